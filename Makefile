@@ -1,0 +1,52 @@
+# lieng: two commands on a fresh machine.
+#   make demo   install what is missing, build, run the demo decks into out/
+#   make test   the same build, then the test suite
+PYTHON ?= python3
+VENV   := .venv
+VPY    := $(VENV)/bin/python
+VPIP   := $(VPY) -m pip
+LIENG  := $(VENV)/bin/lieng
+SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+STAMP  := $(VENV)/.lieng-installed
+export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
+SOURCES := pyproject.toml meson.build $(wildcard fortran/*.f90) fortran/f2py_f2cmap $(wildcard python/lieng/*.py python/lieng/*.md)
+
+.PHONY: all demo test bench gfortran venv install clean distclean
+
+all: install
+
+gfortran:
+	@command -v gfortran >/dev/null 2>&1 || { \
+	  echo "gfortran not found: installing it with apt-get"; \
+	  $(SUDO) apt-get update -qq && $(SUDO) DEBIAN_FRONTEND=noninteractive apt-get install -y -qq gfortran; }
+
+$(VENV)/.deps: | gfortran
+	$(PYTHON) -m venv $(VENV)
+	$(VPIP) install -q --upgrade pip
+	$(VPIP) install -q "meson-python>=0.15" "meson>=1.1" ninja "numpy>=2.0" "scipy>=1.10" "matplotlib>=3.7" "pytest>=7"
+	touch $@
+
+venv: $(VENV)/.deps
+
+$(STAMP): $(VENV)/.deps $(SOURCES) | gfortran
+	$(VPIP) install -q --no-build-isolation --no-deps .
+	touch $@
+
+install: $(STAMP)
+
+demo: install
+	rm -rf out
+	$(LIENG) run lieng1 cards/lieng1_demo.dat -o out/lieng1
+	@echo "demo written to out/"
+
+test: install
+	$(VPY) -m pytest -q tests
+
+bench: install
+	$(VPY) tests/benchmarks/bench_point.py
+
+clean:
+	rm -rf build out .pytest_cache
+
+distclean: clean
+	rm -rf $(VENV)

@@ -1,0 +1,110 @@
+! The f2py-visible surface of lieng: plain subroutines with explicit array
+! sizes that call the modules of the static library (f2py does not wrap
+! modules that use other modules).  Python: lieng._core.<name>.
+! Sizes and ranges are checked by the Python layer before every call; the
+! routines check them again and return status st_bad_size rather than
+! touching memory out of range.
+
+!> Slopes and centre of symmetry of a characteristic (PINPUT / CHALIN).
+subroutine core_centre(n, xchl, ychl, slope, isel, lll, mmm, branch, xmdl, ymdl, status, where)
+   use lienard_core, only: wp, centre_of_symmetry
+   implicit none
+   integer, intent(in) :: n                    !< number of points
+   real(wp), intent(in) :: xchl(n)             !< abscissae
+   real(wp), intent(in) :: ychl(n)             !< ordinates
+   real(wp), intent(out) :: slope(n)           !< SLOPE(1..N-1), SLOPE(N) = 0
+   integer, intent(out) :: isel                !< I, the negative slope with the largest value
+   integer, intent(out) :: lll                 !< first segment of the negative-slope run
+   integer, intent(out) :: mmm                 !< last segment of the run
+   integer, intent(out) :: branch              !< -1, 0, +1: FORMAT 1007, 1006, 1008
+   real(wp), intent(out) :: xmdl               !< XMDL
+   real(wp), intent(out) :: ymdl               !< YMDL
+   integer, intent(out) :: status              !< 0 or an error code (lienard_core)
+   integer, intent(out) :: where               !< index the error refers to
+   call centre_of_symmetry(n, xchl, ychl, slope, isel, lll, mmm, branch, xmdl, ymdl, status, where)
+end subroutine core_centre
+
+!> XB of the characteristic at each of M velocities (POINT 305-342).
+subroutine core_xb(n, xchl, ychl, m, y, lookup, xb)
+   use lienard_core, only: wp, xb_listing, xb_bisect, lookup_bisect
+   implicit none
+   integer, intent(in) :: n                    !< number of points
+   real(wp), intent(in) :: xchl(n)             !< abscissae
+   real(wp), intent(in) :: ychl(n)             !< ordinates
+   integer, intent(in) :: m                    !< number of velocities
+   real(wp), intent(in) :: y(m)                !< velocities
+   integer, intent(in) :: lookup               !< 0 listing scan, 1 bisection
+   real(wp), intent(out) :: xb(m)              !< XB at each velocity
+   integer :: i
+   do i = 1, m
+      if (lookup == lookup_bisect) then
+         xb(i) = xb_bisect(n, xchl, ychl, y(i))
+      else
+         xb(i) = xb_listing(n, xchl, ychl, y(i))
+      end if
+   end do
+end subroutine core_xb
+
+!> One POINT step from (x, y, t).
+subroutine core_point(n, xchl, ychl, dtheta, x, y, t, lookup, xn, yn, tn, r, xb, xk, ds, dx, dy, dt, status)
+   use lienard_core, only: wp, point_step
+   implicit none
+   integer, intent(in) :: n                    !< number of points
+   real(wp), intent(in) :: xchl(n)             !< abscissae
+   real(wp), intent(in) :: ychl(n)             !< ordinates
+   real(wp), intent(in) :: dtheta              !< DTHETA
+   real(wp), intent(in) :: x                   !< X(L)
+   real(wp), intent(in) :: y                   !< Y(L)
+   real(wp), intent(in) :: t                   !< T(L)
+   integer, intent(in) :: lookup               !< 0 listing scan, 1 bisection
+   real(wp), intent(out) :: xn                 !< X(L+1)
+   real(wp), intent(out) :: yn                 !< Y(L+1)
+   real(wp), intent(out) :: tn                 !< T(L+1)
+   real(wp), intent(out) :: r                  !< R
+   real(wp), intent(out) :: xb                 !< XB
+   real(wp), intent(out) :: xk                 !< XK
+   real(wp), intent(out) :: ds                 !< DS
+   real(wp), intent(out) :: dx                 !< DX
+   real(wp), intent(out) :: dy                 !< DY
+   real(wp), intent(out) :: dt                 !< DT
+   integer, intent(out) :: status              !< 0, or 4 (singular point), 5 (DT undefined)
+   call point_step(n, xchl, ychl, dtheta, x, y, t, lookup, xn, yn, tn, r, xb, xk, ds, dx, dy, dt, status)
+end subroutine core_point
+
+!> The LIENG-1 phase portrait: NTRAJ trajectories of NPTS points.
+subroutine core_lieng1(n, xchl, ychl, dtheta, xinp, yinp, xincr, yincr, ntraj, npts, lookup, &
+                       x, y, t, status, where, itraj)
+   use lienard_core, only: wp
+   use lieng1, only: lieng1_portrait
+   implicit none
+   integer, intent(in) :: n                    !< number of points of the characteristic
+   real(wp), intent(in) :: xchl(n)             !< abscissae
+   real(wp), intent(in) :: ychl(n)             !< ordinates
+   real(wp), intent(in) :: dtheta              !< DTHETA
+   real(wp), intent(in) :: xinp                !< XINP
+   real(wp), intent(in) :: yinp                !< YINP
+   real(wp), intent(in) :: xincr               !< XINCR
+   real(wp), intent(in) :: yincr               !< YINCR
+   integer, intent(in) :: ntraj                !< number of trajectories
+   integer, intent(in) :: npts                 !< points per trajectory
+   integer, intent(in) :: lookup               !< 0 listing scan, 1 bisection
+   real(wp), intent(out) :: x(npts, ntraj)     !< X
+   real(wp), intent(out) :: y(npts, ntraj)     !< Y
+   real(wp), intent(out) :: t(npts, ntraj)     !< T
+   integer, intent(out) :: status              !< 0 or the failing status
+   integer, intent(out) :: where               !< L of the failure
+   integer, intent(out) :: itraj               !< trajectory of the failure
+   call lieng1_portrait(n, xchl, ychl, dtheta, xinp, yinp, xincr, yincr, ntraj, npts, lookup, &
+                        x, y, t, status, where, itraj)
+end subroutine core_lieng1
+
+!> The time correction alone (DO 140), applied in place to T.
+subroutine core_time_correction(npts, y, t)
+   use lienard_core, only: wp
+   use lieng1, only: time_correction
+   implicit none
+   integer, intent(in) :: npts                 !< number of points
+   real(wp), intent(in) :: y(npts)             !< Y
+   real(wp), intent(inout) :: t(npts)          !< T, corrected in place
+   call time_correction(npts, y, t)
+end subroutine core_time_correction

@@ -1,0 +1,341 @@
+!> Shared core of LIENG-1 (thesis App. 4) and MLIEN / LIENG-2 (App. 6).
+!>
+!> S. S. Antoniou, "The mechanism of frictional oscillations", PhD thesis,
+!> Imperial College London, 1971.  This module holds what the two programs
+!> have in common:
+!>
+!>  * the slopes of the characteristic line and the search for its centre of
+!>    symmetry (PINPUT of LIENG-1, statements 45-2001; CHALIN of MLIEN);
+!>  * the look-up of the characteristic at the velocity of the current point
+!>    (POINT, statements 305-342);
+!>  * the Lienard construction step (POINT, statements 340-400).
+!>
+!> The arithmetic is the listing's, in double precision (the CDC 6600 word
+!> was 60 bits).  Where the 1971 code is undefined (loops with no bound,
+!> division by zero) the routines stop and return a status code instead;
+!> every such place is listed in fortran/RESTORATION.md.
+module lienard_core
+   use iso_fortran_env, only: wp => real64
+   implicit none
+   private
+
+   public :: wp
+   public :: char_slopes, centre_of_symmetry, xb_listing, xb_bisect, point_step
+
+   !> Status codes returned by the routines of this module and of the
+   !> programs built on it (0 = success).
+   integer, parameter, public :: st_ok = 0
+   !> XCHL(J) = XCHL(J+1): infinite slope ("CONTROL STATEMENT DOES NOT EXIST").
+   integer, parameter, public :: st_infinite_slope = 1
+   !> No negative-slope point among SLOPE(1..K-1) (FORMAT 1175).
+   integer, parameter, public :: st_no_negative_slope = 2
+   !> Equal-slope interpolation divides by zero (BB = 0 at statement 210/220).
+   integer, parameter, public :: st_centre_undefined = 3
+   !> The point P coincides with S (XK = 0 and Y = 0): the singular point.
+   integer, parameter, public :: st_singular_point = 4
+   !> 2*Y - DY = 0 in the DT formula: the time increment is undefined.
+   integer, parameter, public :: st_dt_undefined = 5
+   !> An array size out of range (N < 2, NPTS < 1, ...).
+   integer, parameter, public :: st_bad_size = 6
+   !> MLIEN: |VO/AMPV0| > 1 or AMPV0 = 0 (ARCOS out of its domain).
+   integer, parameter, public :: st_arcos_domain = 7
+   !> MLIEN: OMEGA = 0 (T(1) = PHI/OMEGA undefined).
+   integer, parameter, public :: st_omega_zero = 8
+   !> MLIEN: TIMDIS finds no point of the characteristic at velocity DIFF.
+   integer, parameter, public :: st_timdis_range = 9
+
+   !> Look-up modes for the characteristic at the current velocity.
+   !> 0: the listing's linear scan (DO 315 JJ=1,N); 1: bisection, which gives
+   !> the same JJ when YCHL decreases strictly (checked before the call).
+   integer, parameter, public :: lookup_listing = 0, lookup_bisect = 1
+
+contains
+
+   !> Slopes of the characteristic line, DO 90 of PINPUT:
+   !> SLOPE(J) = (YCHL(J)-YCHL(J+1)) / (XCHL(J)-XCHL(J+1)), J = 1..N-1.
+   pure subroutine char_slopes(n, xchl, ychl, slope, status, where)
+      integer, intent(in) :: n                 !< number of points of the characteristic
+      real(wp), intent(in) :: xchl(n)          !< abscissae XCHL(1..N) (displacement)
+      real(wp), intent(in) :: ychl(n)          !< ordinates YCHL(1..N) (velocity)
+      real(wp), intent(out) :: slope(n)        !< SLOPE(1..N-1); SLOPE(N) is set to 0
+      integer, intent(out) :: status           !< st_ok or st_infinite_slope
+      integer, intent(out) :: where            !< J of the offending segment, else 0
+      integer :: j
+      real(wp) :: dxchl, dychl
+
+      status = st_ok
+      where = 0
+      slope = 0.0_wp
+      do j = 1, n - 1
+         dxchl = xchl(j) - xchl(j + 1)
+         dychl = ychl(j) - ychl(j + 1)
+         if (dxchl == 0.0_wp) then
+            status = st_infinite_slope
+            where = j
+            return
+         end if
+         slope(j) = dychl/dxchl
+      end do
+   end subroutine char_slopes
+
+   !> Centre of symmetry of the characteristic (PINPUT statements 135-2001).
+   !>
+   !> I: the negative-slope segment with the largest slope; LLL..MMM: the run
+   !> of negative slopes around it; then the point on the steeper end of the
+   !> run where the slope equals the slope at the other end (linear
+   !> interpolation of the slope between two neighbouring points), and the
+   !> middle of that point and the other end gives XMDL, YMDL.
+   pure subroutine centre_of_symmetry(n, xchl, ychl, slope, isel, lll, mmm, branch, &
+                                      xmdl, ymdl, status, where)
+      integer, intent(in) :: n                 !< number of points (N >= 3)
+      real(wp), intent(in) :: xchl(n)          !< abscissae of the characteristic
+      real(wp), intent(in) :: ychl(n)          !< ordinates of the characteristic
+      real(wp), intent(out) :: slope(n)        !< slopes as computed by char_slopes
+      integer, intent(out) :: isel             !< I: the negative-slope segment with the largest slope
+      integer, intent(out) :: lll              !< first segment of the negative-slope run
+      integer, intent(out) :: mmm              !< last segment of the negative-slope run
+      integer, intent(out) :: branch           !< 0: SLOPE(LLL)=SLOPE(MMM) (FORMAT 1006); -1: .LT. (1007); +1: .GT. (1008)
+      real(wp), intent(out) :: xmdl            !< XMDL, abscissa of the centre of symmetry
+      real(wp), intent(out) :: ymdl            !< YMDL, ordinate (the mean driving velocity)
+      integer, intent(out) :: status           !< st_ok or an error code
+      integer, intent(out) :: where            !< segment index the error refers to
+      integer :: k, i, l, ll, mm
+      real(wp) :: a, slopex, aa, bb, cc, dd, xx, yy
+
+      isel = 0; lll = 0; mmm = 0; branch = 0
+      xmdl = 0.0_wp; ymdl = 0.0_wp
+      if (n < 3) then
+         status = st_bad_size
+         where = n
+         slope = 0.0_wp
+         return
+      end if
+      call char_slopes(n, xchl, ychl, slope, status, where)
+      if (status /= st_ok) return
+      k = n - 1
+
+      ! 135: first negative slope.  The listing tests I.GE.K after the
+      ! increment, so SLOPE(K) is never a starting point (kept as listed).
+      i = 1
+      do
+         if (slope(i) < 0.0_wp) exit
+         i = i + 1
+         if (i >= k) then
+            status = st_no_negative_slope
+            where = 0
+            return
+         end if
+      end do
+
+      ! 140-170: the negative slope with the largest value.  The listing's
+      ! loop 141 has no bound when the slopes after L are not negative; the
+      ! intended end of the scan is L > K (statement 170).
+      search: do
+         l = i + 1
+         do
+            if (l > k) exit search
+            if (slope(l) < 0.0_wp) then
+               a = slope(i) - slope(l)
+               if (a < 0.0_wp) then
+                  i = l
+                  cycle search
+               end if
+            end if
+            l = l + 1
+         end do
+      end do search
+      isel = i
+
+      ! 185-200: the run of negative slopes around I.  The listing's loops have
+      ! no bound; the run stops at segment 1 and at segment K.
+      ll = i - 1
+      do while (ll >= 1)
+         if (slope(ll) >= 0.0_wp) exit
+         ll = ll - 1
+      end do
+      lll = ll + 1
+      mm = i + 1
+      do while (mm <= k)
+         if (slope(mm) >= 0.0_wp) exit
+         mm = mm + 1
+      end do
+      mmm = mm - 1
+
+      if (slope(lll) < slope(mmm)) then
+         ! 210
+         branch = -1
+         slopex = slope(mmm)
+         aa = slopex - slope(lll)
+         bb = slope(lll + 1) - slope(lll)
+         if (bb == 0.0_wp) then
+            status = st_centre_undefined
+            where = lll
+            return
+         end if
+         cc = xchl(lll + 1) - xchl(lll)
+         xx = (aa/bb)*cc + xchl(lll)
+         dd = ychl(lll + 1) - ychl(lll)
+         yy = (aa/bb)*dd + ychl(lll)
+         xmdl = (xx + xchl(mmm))/2.0_wp
+         ymdl = (yy + ychl(mmm))/2.0_wp
+      else if (slope(lll) > slope(mmm)) then
+         ! 220
+         branch = 1
+         slopex = slope(lll)
+         aa = slopex - slope(mmm - 1)
+         bb = slope(mmm) - slope(mmm - 1)
+         if (bb == 0.0_wp) then
+            status = st_centre_undefined
+            where = mmm - 1
+            return
+         end if
+         cc = xchl(mmm) - xchl(mmm - 1)
+         xx = (aa/bb)*cc + xchl(mmm - 1)
+         dd = ychl(mmm) - ychl(mmm - 1)
+         yy = (aa/bb)*dd + ychl(mmm - 1)
+         xmdl = (xx + xchl(lll))/2.0_wp
+         ymdl = (yy + ychl(lll))/2.0_wp
+      else
+         branch = 0
+         xmdl = (xchl(lll) + xchl(mmm))/2.0_wp
+         ymdl = (ychl(lll) + ychl(mmm))/2.0_wp
+      end if
+      status = st_ok
+      where = 0
+   end subroutine centre_of_symmetry
+
+   !> XB, the abscissa of the characteristic at velocity Y, exactly as POINT
+   !> statements 305-342 find it: the first JJ with Y >= YCHL(JJ); equality
+   !> takes XCHL(JJ); otherwise linear interpolation between JJ-1 and JJ;
+   !> above YCHL(1) XB = XCHL(1); below every YCHL XB = XCHL(N).
+   pure function xb_listing(n, xchl, ychl, y) result(xb)
+      integer, intent(in) :: n                 !< number of points
+      real(wp), intent(in) :: xchl(n)          !< abscissae of the characteristic
+      real(wp), intent(in) :: ychl(n)          !< ordinates of the characteristic
+      real(wp), intent(in) :: y                !< velocity of the current point Y(L)
+      real(wp) :: xb                           !< abscissa of S, the foot of the construction
+      integer :: jj
+      real(wp) :: c
+
+      do jj = 1, n
+         c = y - ychl(jj)
+         if (c < 0.0_wp) cycle
+         xb = xb_at(n, xchl, ychl, y, jj, c)
+         return
+      end do
+      xb = xchl(n)
+   end function xb_listing
+
+   !> The same XB as xb_listing, finding JJ by bisection.  Valid only for a
+   !> strictly decreasing YCHL, where the first JJ with YCHL(JJ) <= Y is unique.
+   pure function xb_bisect(n, xchl, ychl, y) result(xb)
+      integer, intent(in) :: n                 !< number of points
+      real(wp), intent(in) :: xchl(n)          !< abscissae of the characteristic
+      real(wp), intent(in) :: ychl(n)          !< ordinates, strictly decreasing
+      real(wp), intent(in) :: y                !< velocity of the current point
+      real(wp) :: xb                           !< abscissa of S
+      integer :: lo, hi, mid
+
+      if (y - ychl(n) < 0.0_wp) then
+         xb = xchl(n)
+         return
+      end if
+      ! invariant: y - ychl(hi) >= 0, and y - ychl(lo-1) < 0 for lo > 1
+      lo = 1
+      hi = n
+      do while (lo < hi)
+         mid = (lo + hi)/2
+         if (y - ychl(mid) < 0.0_wp) then
+            lo = mid + 1
+         else
+            hi = mid
+         end if
+      end do
+      xb = xb_at(n, xchl, ychl, y, lo, y - ychl(lo))
+   end function xb_bisect
+
+   !> Statements 320-335 for a found JJ (C = Y - YCHL(JJ) >= 0).
+   pure function xb_at(n, xchl, ychl, y, jj, c) result(xb)
+      integer, intent(in) :: n, jj
+      real(wp), intent(in) :: xchl(n), ychl(n), y, c
+      real(wp) :: xb
+      if (c == 0.0_wp) then
+         xb = xchl(jj)                                  ! 320
+      else if (jj == 1) then
+         xb = xchl(1)                                   ! 335
+      else                                              ! 330
+         xb = ((xchl(jj) - xchl(jj - 1))*(ychl(jj - 1) - y)/(ychl(jj - 1) - ychl(jj))) &
+              + xchl(jj - 1)
+      end if
+   end function xb_at
+
+   !> One step of Lienard's construction, POINT statements 305-400.
+   !>
+   !> From P = (X, Y) the foot S = (XB, 0) is found on the characteristic; the
+   !> next point lies on the tangent to the circle about S, a distance
+   !> DS = DTHETA*|SP| away, in the quadrant-determined direction; the time
+   !> increment is DT = |2*DX / (2*Y - DY)|.
+   pure subroutine point_step(n, xchl, ychl, dtheta, x, y, t, lookup, &
+                              xn, yn, tn, r, xb, xk, ds, dx, dy, dt, status)
+      integer, intent(in) :: n                 !< number of points of the characteristic
+      real(wp), intent(in) :: xchl(n)          !< abscissae of the characteristic
+      real(wp), intent(in) :: ychl(n)          !< ordinates of the characteristic
+      real(wp), intent(in) :: dtheta           !< DTHETA, angle increment (rad)
+      real(wp), intent(in) :: x                !< X(L)
+      real(wp), intent(in) :: y                !< Y(L)
+      real(wp), intent(in) :: t                !< T(L)
+      integer, intent(in) :: lookup            !< lookup_listing or lookup_bisect
+      real(wp), intent(out) :: xn              !< X(L+1)
+      real(wp), intent(out) :: yn              !< Y(L+1)
+      real(wp), intent(out) :: tn              !< T(L+1) = T(L) + DT
+      real(wp), intent(out) :: r               !< R = |SP|
+      real(wp), intent(out) :: xb              !< XB, abscissa of S
+      real(wp), intent(out) :: xk              !< XK = X(L) - XB
+      real(wp), intent(out) :: ds              !< DS = DTHETA*R
+      real(wp), intent(out) :: dx              !< DX = |DS sin(THETA)|
+      real(wp), intent(out) :: dy              !< DY = |DS cos(THETA)|
+      real(wp), intent(out) :: dt              !< DT, the time increment
+      integer, intent(out) :: status           !< st_ok, st_singular_point or st_dt_undefined
+      real(wp) :: theta, den
+
+      status = st_ok
+      if (lookup == lookup_bisect) then
+         xb = xb_bisect(n, xchl, ychl, y)
+      else
+         xb = xb_listing(n, xchl, ychl, y)
+      end if
+      xk = x - xb                                       ! 340
+      r = sqrt(y**2 + xk**2)
+      ds = 0.0_wp; dx = 0.0_wp; dy = 0.0_wp; dt = 0.0_wp
+      xn = x; yn = y; tn = t
+      if (xk == 0.0_wp .and. y == 0.0_wp) then
+         status = st_singular_point
+         return
+      end if
+      theta = atan(y/xk)
+      ds = dtheta*r
+      dx = abs(ds*sin(theta))
+      dy = abs(ds*cos(theta))
+      den = 2.0_wp*y - dy
+      if (den == 0.0_wp) then
+         status = st_dt_undefined
+         return
+      end if
+      dt = abs((2.0_wp*dx)/den)
+      tn = t + dt
+      if (xk >= 0.0_wp .and. y >= 0.0_wp) then         ! 360
+         xn = x + dx
+         yn = y - dy
+      else if (xk >= 0.0_wp .and. y < 0.0_wp) then     ! 370
+         xn = x - dx
+         yn = y - dy
+      else if (xk < 0.0_wp .and. y < 0.0_wp) then      ! 380
+         xn = x - dx
+         yn = y + dy
+      else                                              ! 390
+         xn = x + dx
+         yn = y + dy
+      end if
+   end subroutine point_step
+
+end module lienard_core

@@ -1,0 +1,25 @@
+"""lieng: S. S. Antoniou's 1971 Lienard-plane programs, restored and continued.
+
+The 1971 programs (thesis, Imperial College London):
+
+* :func:`lieng1` -- LIENG-1 (App. 4), phase portraits by Lienard's construction.
+
+Card decks: :func:`read_deck`, :func:`write_deck`.  Bad input raises
+:class:`LiengInputError` with a one-line message naming the card and columns.
+"""
+
+from .cards import read_deck, write_deck
+from .characteristic import centre_of_symmetry
+from .errors import LiengInputError
+from .lieng1 import Lieng1Result, lieng1
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "LiengInputError",
+    "Lieng1Result",
+    "centre_of_symmetry",
+    "lieng1",
+    "read_deck",
+    "write_deck",
+]

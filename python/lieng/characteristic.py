@@ -1,0 +1,136 @@
+"""The characteristic line: checks and centre of symmetry (PINPUT / CHALIN).
+
+Shared by LIENG-1 and MLIEN.  The checks run before any compiled routine is
+called, so no input can make the Fortran read out of range; each error
+names where the bad value is through a ``locate`` callback (card and
+columns for a deck, the argument and index for the Python API).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from . import _core
+from .errors import LiengInputError
+
+__all__ = ["Centre", "check_characteristic", "centre_of_symmetry", "api_locator", "NMAX_DECK"]
+
+#: DIMENSION XCHL(200), YCHL(200) of the listings.
+NMAX_DECK = 200
+
+Locate = Callable[[str, int], str]
+
+
+def api_locator(kind: str, j: int) -> str:
+    """Name point ``j`` (1-based) of array ``kind`` the way the API takes it."""
+    return f"{kind.lower()}[{j - 1}]"
+
+
+@dataclass(frozen=True)
+class Centre:
+    """Result of the centre-of-symmetry search of PINPUT / CHALIN.
+
+    Attributes
+    ----------
+    slope : ndarray
+        SLOPE(1..N-1) = dv/dx of each segment.
+    isel : int
+        I, the segment with the largest negative slope (1-based).
+    lll, mmm : int
+        First and last segment of the run of negative slopes around I.
+    branch : int
+        -1, 0, +1 as SLOPE(LLL) is .LT., .EQ., .GT. SLOPE(MMM)
+        (FORMATs 1007, 1006, 1008).
+    xmdl, ymdl : float
+        XMDL, YMDL: the centre of symmetry; YMDL is the mean driving
+        velocity VO.
+    """
+
+    slope: np.ndarray
+    isel: int
+    lll: int
+    mmm: int
+    branch: int
+    xmdl: float
+    ymdl: float
+
+
+def check_characteristic(xchl, ychl, locate: Locate = api_locator) -> tuple[np.ndarray, np.ndarray]:
+    """Check a characteristic line before it reaches the compiled core.
+
+    Raises :class:`LiengInputError` for fewer than 3 points, arrays of
+    different length, a value that is not finite, two neighbouring points
+    with equal XCHL (infinite slope: the listing's "control statement does
+    not exist") and a YCHL that does not decrease strictly (the look-up in
+    POINT scans YCHL(1..N) from the highest velocity down).
+    """
+    x = np.ascontiguousarray(xchl, dtype=np.float64).ravel()
+    y = np.ascontiguousarray(ychl, dtype=np.float64).ravel()
+    if x.size != y.size:
+        raise LiengInputError(f"xchl has {x.size} points but ychl has {y.size}")
+    if x.size < 3:
+        raise LiengInputError(f"the characteristic needs at least 3 points, got {x.size}")
+    for kind, arr in (("XCHL", x), ("YCHL", y)):
+        bad = np.flatnonzero(~np.isfinite(arr))
+        if bad.size:
+            raise LiengInputError(f"{locate(kind, int(bad[0]) + 1)}: {arr[bad[0]]} is not a finite number")
+    eq = np.flatnonzero(np.diff(x) == 0.0)
+    if eq.size:
+        j = int(eq[0]) + 1
+        raise LiengInputError(
+            f"{locate('XCHL', j + 1)}: XCHL({j + 1}) = XCHL({j}) = {x[j - 1]:g}: infinite slope between "
+            f"points {j} and {j + 1}; Lienard's construction does not apply (the listing: "
+            f"'control statement does not exist')"
+        )
+    up = np.flatnonzero(np.diff(y) >= 0.0)
+    if up.size:
+        j = int(up[0]) + 1
+        raise LiengInputError(
+            f"{locate('YCHL', j + 1)}: YCHL({j + 1}) = {y[j]:g} is not below YCHL({j}) = {y[j - 1]:g}: "
+            f"YCHL must decrease strictly from point 1 to point N"
+        )
+    return x, y
+
+
+def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator) -> Centre:
+    """Slopes and centre of symmetry of a characteristic, as PINPUT finds them.
+
+    Parameters
+    ----------
+    xchl, ychl : array_like
+        The characteristic line, YCHL strictly decreasing.
+    locate : callable, optional
+        Names a point in error messages.
+
+    Returns
+    -------
+    Centre
+
+    Raises
+    ------
+    LiengInputError
+        No negative-slope segment (the listing prints "THERE IS NOT A
+        NEGATIVE SLOPE POINT" and goes on with undefined values), or an
+        equal-slope interpolation that divides by zero.
+    """
+    x, y = check_characteristic(xchl, ychl, locate)
+    slope, isel, lll, mmm, branch, xmdl, ymdl, status, where = _core.core_centre(x, y)
+    n = x.size
+    if status == 2:
+        raise LiengInputError(
+            f"{locate('YCHL', 1)}..{locate('YCHL', n)}: there is not a negative slope point among "
+            f"segments 1..{n - 2} (FORMAT 1175): the centre of symmetry cannot be found"
+        )
+    if status == 3:
+        raise LiengInputError(
+            f"{locate('XCHL', where)}..{locate('XCHL', where + 2)}: segments {where} and {where + 1} of the "
+            f"negative-slope run have equal slopes, so the equal-slope interpolation of PINPUT "
+            f"(statement 210/220) divides by zero: the centre of symmetry is undefined"
+        )
+    if status != 0:  # pragma: no cover - ruled out by check_characteristic
+        raise LiengInputError(f"characteristic rejected by the core (status {status} at {where})")
+    return Centre(np.asarray(slope[: n - 1]).copy(), int(isel), int(lll), int(mmm), int(branch),
+                  float(xmdl), float(ymdl))

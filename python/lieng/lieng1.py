@@ -1,0 +1,278 @@
+"""LIENG-1 (thesis App. 4): phase portraits by Lienard's construction.
+
+The deck (PINPUT)::
+
+    card 1        KEY                                   (I1)
+    card 2        XINCR, YINCR                          (2F10.4)
+    card 3        N, OMEGA, AMPV0, XINP, YINP, DTHETA   (I5,5F10.2)
+    cards 4-43    XCHL(1..200), five a card             (5F10.2)
+    cards 44-83   YCHL(1..200), five a card             (5F10.2)
+
+All 40 + 40 characteristic cards are read whatever N is (the DO loops of
+PINPUT run to 196); points past N are ignored.
+
+The program computes 9 trajectories of 3000 points; the k-th starts at
+(XINP - (k-1)*XINCR, YINP - (k-1)*YINCR) as the listing steps it with
+``XINP=XINP-XINCR``.  OMEGA and AMPV0 only enter the printed
+``PHI = ARCOS(YMDL/AMPV0)``; LIENG-1's construction does not use them.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import Sequence
+
+import numpy as np
+
+from . import _core
+from .cards import Card, card_location, read_cards, write_cards
+from .characteristic import NMAX_DECK, Centre, api_locator, centre_of_symmetry, check_characteristic
+from .errors import LiengInputError
+
+__all__ = ["LAYOUT", "Deck", "Lieng1Result", "lieng1", "run_deck", "LOOKUP_MODES"]
+
+#: Look-up of the characteristic in POINT: the listing's linear scan, or a
+#: bisection that finds the same point for a strictly decreasing YCHL.
+LOOKUP_MODES = {"listing": 0, "bisect": 1}
+
+LAYOUT: list[Card] = (
+    [
+        Card("(I1)", ("KEY",)),
+        Card("(2F10.4)", ("XINCR", "YINCR")),
+        Card("(I5,5F10.2)", ("N", "OMEGA", "AMPV0", "XINP", "YINP", "DTHETA")),
+    ]
+    + [Card("(5F10.2)", tuple(f"XCHL({5 * c + i + 1})" for i in range(5))) for c in range(40)]
+    + [Card("(5F10.2)", tuple(f"YCHL({5 * c + i + 1})" for i in range(5))) for c in range(40)]
+)
+
+
+def deck_locator(layout: Sequence[Card], source: str):
+    """A ``locate`` callback naming a characteristic point by card and columns."""
+
+    def locate(kind: str, j: int) -> str:
+        return f"{source}: {card_location(layout, f'{kind}({j})')}"
+
+    return locate
+
+
+@dataclass
+class Deck:
+    """The values of a LIENG-1 deck, as PINPUT reads them."""
+
+    key: int = 1
+    xincr: float = 0.0
+    yincr: float = 0.0
+    n: int = 3
+    omega: float = 0.0
+    ampv0: float = 0.0
+    xinp: float = 0.0
+    yinp: float = 0.0
+    dtheta: float = 0.01
+    xchl: np.ndarray = field(default_factory=lambda: np.zeros(NMAX_DECK))
+    ychl: np.ndarray = field(default_factory=lambda: np.zeros(NMAX_DECK))
+    source: str = "deck"
+
+    program = "lieng1"
+    layout = LAYOUT
+
+    @classmethod
+    def from_lines(cls, lines: Sequence[str], source: str = "deck") -> "Deck":
+        """Read the deck's cards; raises LiengInputError naming card and columns."""
+        v = read_cards(lines, LAYOUT, source)
+        xchl = np.array([v[f"XCHL({j})"] for j in range(1, NMAX_DECK + 1)], dtype=float)
+        ychl = np.array([v[f"YCHL({j})"] for j in range(1, NMAX_DECK + 1)], dtype=float)
+        deck = cls(v["KEY"], v["XINCR"], v["YINCR"], v["N"], v["OMEGA"], v["AMPV0"], v["XINP"],
+                   v["YINP"], v["DTHETA"], xchl, ychl, source)
+        deck.check()
+        return deck
+
+    def values(self) -> dict:
+        """``{field name: value}`` in the names of the layout."""
+        v = {"KEY": self.key, "XINCR": self.xincr, "YINCR": self.yincr, "N": self.n,
+             "OMEGA": self.omega, "AMPV0": self.ampv0, "XINP": self.xinp, "YINP": self.yinp,
+             "DTHETA": self.dtheta}
+        xchl = np.zeros(NMAX_DECK)
+        ychl = np.zeros(NMAX_DECK)
+        xchl[: len(self.xchl)] = self.xchl[:NMAX_DECK]
+        ychl[: len(self.ychl)] = self.ychl[:NMAX_DECK]
+        for j in range(NMAX_DECK):
+            v[f"XCHL({j + 1})"] = float(xchl[j])
+            v[f"YCHL({j + 1})"] = float(ychl[j])
+        return v
+
+    def to_lines(self) -> list[str]:
+        """The deck's cards (each reads back to the same value)."""
+        return write_cards(self.values(), LAYOUT)
+
+    def locate(self, name: str) -> str:
+        return f"{self.source}: {card_location(LAYOUT, name)}"
+
+    def check(self) -> None:
+        """The checks PINPUT lacked: N in 3..200, the characteristic, DTHETA."""
+        if not 0 <= self.key <= 9:
+            raise LiengInputError(f"{self.locate('KEY')}: KEY = {self.key} must be a digit 0-9")
+        if not 3 <= self.n <= NMAX_DECK:
+            hint = ""
+            if self.n > NMAX_DECK:
+                hint = " (blanks after the digits count as zeros: right-justify N in columns 1-5)"
+            raise LiengInputError(
+                f"{self.locate('N')}: N = {self.n} is out of range: the characteristic needs "
+                f"3 <= N <= {NMAX_DECK} points (DIMENSION XCHL(200)){hint}"
+            )
+        if not (self.dtheta > 0 and math.isfinite(self.dtheta)):
+            raise LiengInputError(f"{self.locate('DTHETA')}: DTHETA = {self.dtheta:g} must be positive")
+        check_characteristic(self.xchl[: self.n], self.ychl[: self.n], deck_locator(LAYOUT, self.source))
+
+    def run(self, lookup: str = "listing") -> "Lieng1Result":
+        """Run the deck as the 1971 program did: 9 trajectories of 3000 points."""
+        return run_deck(self, lookup=lookup)
+
+
+@dataclass
+class Lieng1Result:
+    """A LIENG-1 phase portrait.
+
+    Attributes
+    ----------
+    x, y, t : ndarray, shape (ntraj, npts)
+        Displacement, velocity and time of every point of every trajectory
+        (``t`` after the near-abscissa time correction).
+    xmdl, ymdl : float
+        Centre of symmetry of the characteristic; ``ymdl`` is VO, the mean
+        driving velocity.
+    centre : Centre
+        Slopes and the details of the centre search.
+    xchl, ychl : ndarray
+        The characteristic (N points).
+    starts : ndarray, shape (ntraj, 2)
+        Initial point of each trajectory.
+    dtheta : float
+        Angle increment used.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    t: np.ndarray
+    xmdl: float
+    ymdl: float
+    centre: Centre
+    xchl: np.ndarray
+    ychl: np.ndarray
+    starts: np.ndarray
+    dtheta: float
+
+    @property
+    def ntraj(self) -> int:
+        return self.x.shape[0]
+
+    @property
+    def npts(self) -> int:
+        return self.x.shape[1]
+
+
+def _status_error(status: int, where: int, itraj: int, x0: float, y0: float, locate_start: str) -> LiengInputError:
+    if status == 4:
+        return LiengInputError(
+            f"{locate_start}: trajectory {itraj} reaches the singular point at step {where} "
+            f"(P = S: X = XB, Y = 0; it starts at X = {x0:g}, Y = {y0:g}): Lienard's construction has no "
+            f"direction there"
+        )
+    if status == 5:
+        return LiengInputError(
+            f"{locate_start}: trajectory {itraj}, step {where}: 2*Y - DY = 0 in DT = |2*DX/(2*Y-DY)|, "
+            f"the time increment is undefined"
+        )
+    return LiengInputError(f"{locate_start}: the core stopped with status {status} (trajectory {itraj}, step {where})")
+
+
+def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3000, *,
+           lookup: str = "listing", _locate=api_locator, _locate_start: str = "xinp, yinp") -> Lieng1Result:
+    """Phase portrait of the LIENG-1 program (thesis App. 4).
+
+    Parameters
+    ----------
+    xchl, ychl : array_like, shape (N,)
+        The characteristic line x = -phi(v): displacements XCHL (mm) and
+        velocities YCHL (mm/s), YCHL strictly decreasing, N >= 3.
+    xinp, yinp : float
+        Initial point of the first trajectory (mm, mm/s).
+    dtheta : float
+        DTHETA, the angle increment of the construction (rad), > 0.
+    xincr, yincr : float, optional
+        Subtracted from the initial point after each trajectory.
+    ntraj : int, optional
+        Number of trajectories (9 in the listing).
+    npts : int, optional
+        Points per trajectory (3000 in the listing), >= 1.
+    lookup : {"listing", "bisect"}, optional
+        How POINT finds the characteristic at the current velocity: the
+        listing's linear scan, or bisection (same result, faster for large N).
+
+    Returns
+    -------
+    Lieng1Result
+        ``x, y, t`` of shape (ntraj, npts), ``xmdl, ymdl`` and the centre.
+
+    Raises
+    ------
+    LiengInputError
+        Bad characteristic, non-positive DTHETA, a trajectory that meets the
+        singular point, or sizes out of range.
+    """
+    centre = centre_of_symmetry(xchl, ychl, _locate)
+    x, y = check_characteristic(xchl, ychl, _locate)
+    try:
+        ntraj = int(ntraj)
+        npts = int(npts)
+    except (TypeError, ValueError):
+        raise LiengInputError("ntraj and npts must be integers") from None
+    if ntraj < 1 or npts < 1:
+        raise LiengInputError(f"ntraj = {ntraj} and npts = {npts} must both be >= 1")
+    if ntraj * npts > 50_000_000:
+        raise LiengInputError(f"ntraj*npts = {ntraj * npts} points is more than this API allocates (5e7)")
+    vals = {"xinp": xinp, "yinp": yinp, "dtheta": dtheta, "xincr": xincr, "yincr": yincr}
+    for k, v in vals.items():
+        if not math.isfinite(float(v)):
+            raise LiengInputError(f"{k} = {v} is not a finite number")
+    if not float(dtheta) > 0:
+        raise LiengInputError(f"dtheta = {dtheta} must be positive")
+    if lookup not in LOOKUP_MODES:
+        raise LiengInputError(f"lookup = {lookup!r}: choose one of {', '.join(LOOKUP_MODES)}")
+    X, Y, T, status, where, itraj = _core.core_lieng1(
+        x, y, float(dtheta), float(xinp), float(yinp), float(xincr), float(yincr), ntraj, npts,
+        LOOKUP_MODES[lookup])
+    starts = np.empty((ntraj, 2))
+    xs, ys = float(xinp), float(yinp)
+    for k in range(ntraj):
+        starts[k] = xs, ys
+        xs -= float(xincr)
+        ys -= float(yincr)
+    if status != 0:
+        raise _status_error(int(status), int(where), int(itraj), *starts[int(itraj) - 1], _locate_start)
+    return Lieng1Result(np.ascontiguousarray(X.T), np.ascontiguousarray(Y.T), np.ascontiguousarray(T.T),
+                        centre.xmdl, centre.ymdl, centre, x, y, starts, float(dtheta))
+
+
+def phi_of(ymdl: float, ampv0: float) -> float:
+    """PHI = ARCOS(VO/AMPV0) of the main program, NaN where ARCOS is undefined."""
+    if ampv0 == 0 or abs(ymdl / ampv0) > 1:
+        return float("nan")
+    return math.acos(ymdl / ampv0)
+
+
+def run_deck(deck: Deck, lookup: str = "listing", ntraj: int = 9, npts: int = 3000) -> Lieng1Result:
+    """Run a LIENG-1 deck: 9 trajectories of 3000 points, as the listing does."""
+    deck.check()
+    n = deck.n
+    res = lieng1(deck.xchl[:n], deck.ychl[:n], deck.xinp, deck.yinp, deck.dtheta, deck.xincr, deck.yincr,
+                 ntraj=ntraj, npts=npts, lookup=lookup, _locate=deck_locator(LAYOUT, deck.source),
+                 _locate_start=f"{deck.source}: card 3, columns 26-45 (XINP, YINP)")
+    if math.isnan(phi_of(res.ymdl, deck.ampv0)):
+        warnings.warn(
+            f"{deck.source}: PHI = ARCOS(VO/AMPV0) is undefined for VO = {res.ymdl:g}, AMPV0 = {deck.ampv0:g} "
+            f"(the 1971 run would have stopped here); LIENG-1 does not use PHI, so it is listed as NaN",
+            stacklevel=2,
+        )
+    return res
