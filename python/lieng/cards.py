@@ -323,7 +323,16 @@ def write_record(fmt: str | Group, values: Sequence = ()) -> list[str]:
     vals = list(values)
     records: list[str] = []
     cur: list[str] = []
-    state = {"i": 0}
+    state = {"i": 0, "pending": 0}  # pending: blanks of X editing not yet materialised
+
+    def emit(text: str) -> None:
+        cur.append(" " * state["pending"] + text)
+        state["pending"] = 0
+
+    def end_record() -> None:
+        records.append("".join(cur))
+        cur.clear()
+        state["pending"] = 0  # X at the end of a record writes nothing
 
     def run(items: Iterable) -> bool:
         """Process items; False when the values ran out at a data descriptor."""
@@ -333,24 +342,22 @@ def write_record(fmt: str | Group, values: Sequence = ()) -> list[str]:
                     if not run(it.items):
                         return False
             elif it.kind == "/":
-                records.append("".join(cur))
-                cur.clear()
+                end_record()
             elif it.kind == "X":
-                cur.append(" " * it.w)
+                state["pending"] += it.w
             elif it.kind == "H":
-                cur.append(it.text)
+                emit(it.text)
             else:
                 if state["i"] >= len(vals):
                     return False
-                cur.append(format_value(vals[state["i"]], it))
+                emit(format_value(vals[state["i"]], it))
                 state["i"] += 1
         return True
 
     if run(group.items):
         while state["i"] < len(vals):
             # format reversion: new record, restart at the last top-level group
-            records.append("".join(cur))
-            cur.clear()
+            end_record()
             last = [k for k, it in enumerate(group.items) if isinstance(it, Group)]
             items = group.items[last[-1] :] if last else group.items
             if not any(
@@ -359,7 +366,7 @@ def write_record(fmt: str | Group, values: Sequence = ()) -> list[str]:
                 raise ValueError("FORMAT has no data edit descriptor for the remaining values")
             if not run(items):
                 break
-    records.append("".join(cur))
+    end_record()
     return records
 
 
@@ -369,12 +376,14 @@ def write_record(fmt: str | Group, values: Sequence = ()) -> list[str]:
 
 
 def deck_field(value, ed: Edit) -> str:
-    """Text of one card field that reads back (with ``ed``) to ``value``.
+    """Text of one card field for ``value``, as close as ``w`` columns allow.
 
     The Fortran output form (``Fw.d``) is used when it reads back exactly;
     otherwise the shortest decimal that does, always with a decimal point
-    (which overrides the implied one), in fixed or exponent form.  Raises
-    ``ValueError`` when no text of width ``w`` reads back to the value.
+    (which overrides the implied one), in fixed or exponent form.  A value
+    that no ``w`` columns can hold exactly (1/3 in 10 columns) is written
+    with as many digits as fit: a deck that was read from cards always
+    reads back to the same values.
     """
     if ed.kind == "I":
         s = str(int(value))
@@ -389,14 +398,19 @@ def deck_field(value, ed: Edit) -> str:
     s = format_value(v, ed)
     if "*" not in s and read_field(s, ed) == v:
         return s
-    candidates = [
-        np.format_float_positional(v, unique=True, trim="."),
-        np.format_float_scientific(v, unique=True, trim=".", exp_digits=1).upper(),
-    ]
-    for c in candidates:
-        if len(c) <= ed.w and read_field(c.rjust(ed.w), ed) == v:
-            return c.rjust(ed.w)
-    raise ValueError(f"{value!r} cannot be written exactly in {ed.kind}{ed.w}.{ed.d}")
+    best = None
+    for unique, prec in [(True, None)] + [(False, p) for p in range(16, -1, -1)]:
+        for c in (
+            np.format_float_positional(v, unique=unique, precision=prec, trim="."),
+            np.format_float_scientific(v, unique=unique, precision=prec, trim=".", exp_digits=1).upper(),
+        ):
+            if len(c) <= ed.w:
+                err = abs(read_field(c.rjust(ed.w), ed) - v)
+                if best is None or err < best[0]:
+                    best = (err, c)
+        if best is not None and (best[0] == 0 or not unique):
+            return best[1].rjust(ed.w)
+    raise ValueError(f"{value!r} does not fit in {ed.kind}{ed.w}.{ed.d}")
 
 
 # --------------------------------------------------------------------------

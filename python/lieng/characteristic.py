@@ -14,7 +14,7 @@ from typing import Callable
 import numpy as np
 
 from . import _core
-from .errors import LiengInputError
+from .errors import CentreUndefined, LiengInputError
 
 __all__ = ["Centre", "check_characteristic", "centre_of_symmetry", "api_locator", "NMAX_DECK"]
 
@@ -111,7 +111,7 @@ def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator) -> Centre:
 
     Raises
     ------
-    LiengInputError
+    CentreUndefined
         No negative-slope segment (the listing prints "THERE IS NOT A
         NEGATIVE SLOPE POINT" and goes on with undefined values), or an
         equal-slope interpolation that divides by zero.
@@ -120,12 +120,12 @@ def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator) -> Centre:
     slope, isel, lll, mmm, branch, xmdl, ymdl, status, where = _core.core_centre(x, y)
     n = x.size
     if status == 2:
-        raise LiengInputError(
+        raise CentreUndefined(
             f"{locate('YCHL', 1)}..{locate('YCHL', n)}: there is not a negative slope point among "
             f"segments 1..{n - 2} (FORMAT 1175): the centre of symmetry cannot be found"
         )
     if status == 3:
-        raise LiengInputError(
+        raise CentreUndefined(
             f"{locate('XCHL', where)}..{locate('XCHL', where + 2)}: segments {where} and {where + 1} of the "
             f"negative-slope run have equal slopes, so the equal-slope interpolation of PINPUT "
             f"(statement 210/220) divides by zero: the centre of symmetry is undefined"

@@ -14,3 +14,8 @@ class LiengInputError(ValueError):
 
     def __init__(self, message: str):
         super().__init__(" ".join(str(message).split()))
+
+
+class CentreUndefined(LiengInputError):
+    """The centre of symmetry of a characteristic cannot be found (no
+    negative-slope segment, or the equal-slope interpolation divides by zero)."""

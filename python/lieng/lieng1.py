@@ -29,7 +29,7 @@ import numpy as np
 from . import _core
 from .cards import Card, card_location, read_cards, write_cards
 from .characteristic import NMAX_DECK, Centre, api_locator, centre_of_symmetry, check_characteristic
-from .errors import LiengInputError
+from .errors import CentreUndefined, LiengInputError
 
 __all__ = ["LAYOUT", "Deck", "Lieng1Result", "lieng1", "run_deck", "LOOKUP_MODES"]
 
@@ -188,7 +188,8 @@ def _status_error(status: int, where: int, itraj: int, x0: float, y0: float, loc
 
 
 def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3000, *,
-           lookup: str = "listing", _locate=api_locator, _locate_start: str = "xinp, yinp") -> Lieng1Result:
+           lookup: str = "listing", _locate=api_locator, _locate_start: str = "xinp, yinp",
+           _strict_centre: bool = False) -> Lieng1Result:
     """Phase portrait of the LIENG-1 program (thesis App. 4).
 
     Parameters
@@ -220,9 +221,24 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
     LiengInputError
         Bad characteristic, non-positive DTHETA, a trajectory that meets the
         singular point, or sizes out of range.
+
+    Warns
+    -----
+    UserWarning
+        When the characteristic has no centre of symmetry (no negative
+        slope, e.g. x = c*v with c > 0): ``xmdl`` and ``ymdl`` are NaN, the
+        trajectories are computed all the same.  A deck with such a
+        characteristic is an error (:func:`run_deck`).
     """
-    centre = centre_of_symmetry(xchl, ychl, _locate)
     x, y = check_characteristic(xchl, ychl, _locate)
+    try:
+        centre = centre_of_symmetry(x, y, _locate)
+    except CentreUndefined as exc:
+        if _strict_centre:
+            raise
+        warnings.warn(f"{exc}; xmdl and ymdl are NaN (LIENG-1's construction does not use them)", stacklevel=2)
+        slope = np.diff(y) / np.diff(x)
+        centre = Centre(slope, 0, 0, 0, 0, float("nan"), float("nan"))
     try:
         ntraj = int(ntraj)
         npts = int(npts)
@@ -268,7 +284,7 @@ def run_deck(deck: Deck, lookup: str = "listing", ntraj: int = 9, npts: int = 30
     n = deck.n
     res = lieng1(deck.xchl[:n], deck.ychl[:n], deck.xinp, deck.yinp, deck.dtheta, deck.xincr, deck.yincr,
                  ntraj=ntraj, npts=npts, lookup=lookup, _locate=deck_locator(LAYOUT, deck.source),
-                 _locate_start=f"{deck.source}: card 3, columns 26-45 (XINP, YINP)")
+                 _locate_start=f"{deck.source}: card 3, columns 26-45 (XINP, YINP)", _strict_centre=True)
     if math.isnan(phi_of(res.ymdl, deck.ampv0)):
         warnings.warn(
             f"{deck.source}: PHI = ARCOS(VO/AMPV0) is undefined for VO = {res.ymdl:g}, AMPV0 = {deck.ampv0:g} "
