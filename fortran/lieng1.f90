@@ -69,9 +69,11 @@ contains
    !> The near-abscissa time correction, DO 140 J=6,NPTS of the main program.
    !>
    !> A is the mean of the four increments before T(J); where |Y(J-1)| < 0.2
-   !> and T(J)-T(J-1) > 1.1*A, the increment is replaced by A and D, the
-   !> excess, is subtracted from T(K) for K = J..NPTS, as listed (so T(J) is
-   !> corrected twice; see RESTORATION.md).
+   !> and T(J)-T(J-1) > 1.1*A, the increment is replaced by A
+   !> (T(J) = T(J-1) + A) and D, the excess, is subtracted from every later
+   !> time T(K), K = J+1..NPTS.  The OCR reads "DO 160 K=J,3000", which would
+   !> correct T(J) a second time and make every later time run away to large
+   !> negative values; RESTORATION.md gives the evidence for J+1.
    pure subroutine time_correction(npts, y, t)
       integer, intent(in) :: npts              !< number of points
       real(wp), intent(in) :: y(npts)          !< velocities Y(1..NPTS)
@@ -88,7 +90,7 @@ contains
             d = xco - a
             xco = a
             t(j) = t(j - 1) + xco
-            do k = j, npts
+            do k = j + 1, npts
                t(k) = t(k) - d
             end do
          end if

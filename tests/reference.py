@@ -48,7 +48,8 @@ def point_steps(xchl, ychl, dtheta, x0, y0, nsteps):
 
 
 def time_correction(y, t, factor=1.1, band=0.2):
-    """DO 140 J=6,NPTS of LIENG-1 with plain Python loops (literal K=J)."""
+    """DO 140 J=6,NPTS of LIENG-1 with plain Python loops: the J-th increment
+    becomes A and the later times move back by D (the restored K = J+1)."""
     t = [float(v) for v in t]
     n = len(t)
     for j in range(5, n):  # 0-based J-1
@@ -57,6 +58,6 @@ def time_correction(y, t, factor=1.1, band=0.2):
         if abs(y[j - 1]) < band and xco > factor * a:
             d = xco - a
             t[j] = t[j - 1] + a
-            for k in range(j, n):
+            for k in range(j + 1, n):
                 t[k] -= d
     return np.array(t)
