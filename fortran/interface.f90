@@ -26,18 +26,18 @@ end subroutine core_centre
 
 !> XB of the characteristic at each of M velocities (POINT 305-342).
 subroutine core_xb(n, xchl, ychl, m, y, lookup, xb)
-   use lienard_core, only: wp, xb_listing, xb_bisect, lookup_bisect
+   use lienard_core, only: wp, xb_listing, xb_bisect
    implicit none
    integer, intent(in) :: n                    !< number of points
    real(wp), intent(in) :: xchl(n)             !< abscissae
    real(wp), intent(in) :: ychl(n)             !< ordinates
    integer, intent(in) :: m                    !< number of velocities
    real(wp), intent(in) :: y(m)                !< velocities
-   integer, intent(in) :: lookup               !< 0 listing scan, 1 bisection
+   integer, intent(in) :: lookup               !< 0 listing, 1 bisect, 2 fast
    real(wp), intent(out) :: xb(m)              !< XB at each velocity
    integer :: i
    do i = 1, m
-      if (lookup == lookup_bisect) then
+      if (lookup /= 0) then
          xb(i) = xb_bisect(n, xchl, ychl, y(i))
       else
          xb(i) = xb_listing(n, xchl, ychl, y(i))
@@ -56,7 +56,7 @@ subroutine core_point(n, xchl, ychl, dtheta, x, y, t, lookup, xn, yn, tn, r, xb,
    real(wp), intent(in) :: x                   !< X(L)
    real(wp), intent(in) :: y                   !< Y(L)
    real(wp), intent(in) :: t                   !< T(L)
-   integer, intent(in) :: lookup               !< 0 listing scan, 1 bisection
+   integer, intent(in) :: lookup               !< 0 listing, 1 bisect, 2 fast
    real(wp), intent(out) :: xn                 !< X(L+1)
    real(wp), intent(out) :: yn                 !< Y(L+1)
    real(wp), intent(out) :: tn                 !< T(L+1)
@@ -87,7 +87,7 @@ subroutine core_lieng1(n, xchl, ychl, dtheta, xinp, yinp, xincr, yincr, ntraj, n
    real(wp), intent(in) :: yincr               !< YINCR
    integer, intent(in) :: ntraj                !< number of trajectories
    integer, intent(in) :: npts                 !< points per trajectory
-   integer, intent(in) :: lookup               !< 0 listing scan, 1 bisection
+   integer, intent(in) :: lookup               !< 0 listing, 1 bisect, 2 fast
    real(wp), intent(out) :: x(npts, ntraj)     !< X
    real(wp), intent(out) :: y(npts, ntraj)     !< Y
    real(wp), intent(out) :: t(npts, ntraj)     !< T
@@ -108,3 +108,21 @@ subroutine core_time_correction(npts, y, t)
    real(wp), intent(inout) :: t(npts)          !< T, corrected in place
    call time_correction(npts, y, t)
 end subroutine core_time_correction
+
+!> NSTEPS POINT steps from (x, y, t); only the last point is kept.
+subroutine core_advance(n, xchl, ychl, dtheta, nsteps, lookup, x, y, t, status, where)
+   use lienard_core, only: wp, point_advance
+   implicit none
+   integer, intent(in) :: n                    !< number of points
+   real(wp), intent(in) :: xchl(n)             !< abscissae
+   real(wp), intent(in) :: ychl(n)             !< ordinates
+   real(wp), intent(in) :: dtheta              !< DTHETA
+   integer, intent(in) :: nsteps               !< number of steps
+   integer, intent(in) :: lookup               !< 0 listing, 1 bisect, 2 fast
+   real(wp), intent(inout) :: x                !< X, advanced in place
+   real(wp), intent(inout) :: y                !< Y, advanced in place
+   real(wp), intent(inout) :: t                !< T, advanced in place
+   integer, intent(out) :: status              !< 0 or the failing status
+   integer, intent(out) :: where               !< the failing step
+   call point_advance(n, xchl, ychl, dtheta, nsteps, lookup, x, y, t, status, where)
+end subroutine core_advance

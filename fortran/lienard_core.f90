@@ -20,7 +20,7 @@ module lienard_core
    private
 
    public :: wp
-   public :: char_slopes, centre_of_symmetry, xb_listing, xb_bisect, point_step
+   public :: char_slopes, centre_of_symmetry, xb_listing, xb_bisect, point_step, point_advance
 
    !> Status codes returned by the routines of this module and of the
    !> programs built on it (0 = success).
@@ -44,10 +44,16 @@ module lienard_core
    !> MLIEN: TIMDIS finds no point of the characteristic at velocity DIFF.
    integer, parameter, public :: st_timdis_range = 9
 
-   !> Look-up modes for the characteristic at the current velocity.
-   !> 0: the listing's linear scan (DO 315 JJ=1,N); 1: bisection, which gives
-   !> the same JJ when YCHL decreases strictly (checked before the call).
-   integer, parameter, public :: lookup_listing = 0, lookup_bisect = 1
+   !> Modes of the POINT step.
+   !> 0 (listing): the listing's linear scan (DO 315 JJ=1,N) and its
+   !>   trigonometry, DX = |DS*SIN(ATAN(Y/XK))|: the 1971 arithmetic.
+   !> 1 (bisect): the same arithmetic; the segment is found by bisection,
+   !>   which gives the same JJ when YCHL decreases strictly (checked before
+   !>   the call): bit-identical results.
+   !> 2 (fast): bisection and DX = DTHETA*|Y|, DY = DTHETA*|XK|, equal to the
+   !>   listing's DX, DY in exact arithmetic (|sin(atan u)| = |u|/sqrt(1+u^2)),
+   !>   without the three transcendental calls; differs in the last bits.
+   integer, parameter, public :: lookup_listing = 0, lookup_bisect = 1, mode_fast = 2
 
 contains
 
@@ -284,7 +290,7 @@ contains
       real(wp), intent(in) :: x                !< X(L)
       real(wp), intent(in) :: y                !< Y(L)
       real(wp), intent(in) :: t                !< T(L)
-      integer, intent(in) :: lookup            !< lookup_listing or lookup_bisect
+      integer, intent(in) :: lookup            !< lookup_listing, lookup_bisect or mode_fast
       real(wp), intent(out) :: xn              !< X(L+1)
       real(wp), intent(out) :: yn              !< Y(L+1)
       real(wp), intent(out) :: tn              !< T(L+1) = T(L) + DT
@@ -299,7 +305,7 @@ contains
       real(wp) :: theta, den
 
       status = st_ok
-      if (lookup == lookup_bisect) then
+      if (lookup == lookup_bisect .or. lookup == mode_fast) then
          xb = xb_bisect(n, xchl, ychl, y)
       else
          xb = xb_listing(n, xchl, ychl, y)
@@ -312,10 +318,15 @@ contains
          status = st_singular_point
          return
       end if
-      theta = atan(y/xk)
       ds = dtheta*r
-      dx = abs(ds*sin(theta))
-      dy = abs(ds*cos(theta))
+      if (lookup == mode_fast) then
+         dx = dtheta*abs(y)
+         dy = dtheta*abs(xk)
+      else
+         theta = atan(y/xk)
+         dx = abs(ds*sin(theta))
+         dy = abs(ds*cos(theta))
+      end if
       den = 2.0_wp*y - dy
       if (den == 0.0_wp) then
          status = st_dt_undefined
@@ -337,5 +348,37 @@ contains
          yn = y + dy
       end if
    end subroutine point_step
+
+   !> NSTEPS POINT steps from (X, Y, T), keeping only the last point: the
+   !> step loop of the main program without the arrays (used where only the
+   !> end point matters, and to measure the step rate).
+   pure subroutine point_advance(n, xchl, ychl, dtheta, nsteps, lookup, x, y, t, status, where)
+      integer, intent(in) :: n                 !< number of points of the characteristic
+      real(wp), intent(in) :: xchl(n)          !< abscissae of the characteristic
+      real(wp), intent(in) :: ychl(n)          !< ordinates of the characteristic
+      real(wp), intent(in) :: dtheta           !< DTHETA
+      integer, intent(in) :: nsteps            !< number of steps
+      integer, intent(in) :: lookup            !< lookup_listing or lookup_bisect
+      real(wp), intent(inout) :: x             !< X, advanced in place
+      real(wp), intent(inout) :: y             !< Y, advanced in place
+      real(wp), intent(inout) :: t             !< T (uncorrected), advanced in place
+      integer, intent(out) :: status           !< st_ok or the failing status
+      integer, intent(out) :: where            !< the failing step, else 0
+      integer :: l
+      real(wp) :: xn, yn, tn, r, xb, xk, ds, dx, dy, dt
+
+      status = st_ok
+      where = 0
+      do l = 1, nsteps
+         call point_step(n, xchl, ychl, dtheta, x, y, t, lookup, xn, yn, tn, r, xb, xk, ds, dx, dy, dt, status)
+         if (status /= st_ok) then
+            where = l
+            return
+         end if
+         x = xn
+         y = yn
+         t = tn
+      end do
+   end subroutine point_advance
 
 end module lienard_core

@@ -108,3 +108,12 @@ def test_lookup_modes_give_identical_portraits():
     a = lieng.lieng1(x, y, 8.0, 1.0, 0.01, yincr=-3.0, lookup="listing")
     b = lieng.lieng1(x, y, 8.0, 1.0, 0.01, yincr=-3.0, lookup="bisect")
     assert np.array_equal(a.x, b.x) and np.array_equal(a.y, b.y) and np.array_equal(a.t, b.t)
+
+
+def test_fast_mode_agrees_with_listing_arithmetic():
+    x, y = thesis_characteristic()
+    a = lieng.lieng1(x, y, 8.0, 1.0, 0.01, yincr=-3.0, lookup="listing")
+    b = lieng.lieng1(x, y, 8.0, 1.0, 0.01, yincr=-3.0, lookup="fast")
+    scale = np.abs(a.x).max()
+    np.testing.assert_allclose(b.x, a.x, rtol=1e-10, atol=1e-10 * scale)
+    np.testing.assert_allclose(b.y, a.y, rtol=1e-10, atol=1e-10 * scale)

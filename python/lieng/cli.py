@@ -65,8 +65,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("program", choices=PROGRAMS, help="which program's deck")
     r.add_argument("deck", help="the card deck (one card per line)")
     r.add_argument("-o", "--outdir", required=True, help="output directory")
-    r.add_argument("--lookup", choices=("listing", "bisect"), default="listing",
-                   help="characteristic look-up in POINT: the listing's linear scan (default) or bisection")
+    r.add_argument("--lookup", choices=("listing", "bisect", "fast"), default="listing",
+                   help="POINT step: the 1971 arithmetic (listing, default), bisection look-up with "
+                        "bit-identical results (bisect), or no trig calls (fast, last bits differ)")
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
     r.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
     return p

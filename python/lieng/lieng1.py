@@ -33,9 +33,10 @@ from .errors import CentreUndefined, LiengInputError
 
 __all__ = ["LAYOUT", "Deck", "Lieng1Result", "lieng1", "run_deck", "LOOKUP_MODES"]
 
-#: Look-up of the characteristic in POINT: the listing's linear scan, or a
-#: bisection that finds the same point for a strictly decreasing YCHL.
-LOOKUP_MODES = {"listing": 0, "bisect": 1}
+#: Modes of the POINT step: "listing" (the 1971 linear scan and ATAN/SIN/COS),
+#: "bisect" (bisection look-up, bit-identical results), "fast" (bisection and
+#: DX = DTHETA*|Y|, DY = DTHETA*|XK|: exact-arithmetic equal, last bits differ).
+LOOKUP_MODES = {"listing": 0, "bisect": 1, "fast": 2}
 
 LAYOUT: list[Card] = (
     [
@@ -207,9 +208,11 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
         Number of trajectories (9 in the listing).
     npts : int, optional
         Points per trajectory (3000 in the listing), >= 1.
-    lookup : {"listing", "bisect"}, optional
-        How POINT finds the characteristic at the current velocity: the
-        listing's linear scan, or bisection (same result, faster for large N).
+    lookup : {"listing", "bisect", "fast"}, optional
+        The POINT step: "listing" (default) is the 1971 arithmetic;
+        "bisect" finds the segment by bisection (bit-identical, faster for
+        large N); "fast" adds DX = DTHETA*|Y|, DY = DTHETA*|XK| in place of
+        DS*|SIN(ATAN(Y/XK))|, DS*|COS(...)| (equal in exact arithmetic).
 
     Returns
     -------
