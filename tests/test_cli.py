@@ -189,3 +189,24 @@ def test_console_script_exit_status_and_no_traceback(tmp_path):
     assert p.stderr.count("\n") == 1 and "Traceback" not in p.stderr
     h = subprocess.run([sys.executable, "-m", "lieng.cli", "--help"], capture_output=True, text=True)
     assert h.returncode == 0 and "run" in h.stdout
+
+
+def test_undefined_centre_interpolation_warns_and_completes(tmp_path, capsys):
+    # run slopes -2, -2, -1: SLOPE(LLL) < SLOPE(MMM) and SLOPE(LLL+1) = SLOPE(LLL): BB = 0
+    x = [0.0, -1.0, 0.0, 1.0, 3.0, 2.0]
+    y = [20.0, 15.0, 13.0, 11.0, 9.0, 4.0]
+    xs = x + [0.0] * 194
+    ys = y + [0.0] * 194
+    lines = ["1", f"{0.5:10.4f}{0.0:10.4f}", f"{6:5d}{0.0:10.2f}{0.0:10.2f}{2.0:10.2f}{1.0:10.2f}{0.01:10.2f}"]
+    for arr in (xs, ys):
+        lines += ["".join(f"{v:10.2f}" for v in arr[i:i + 5]) for i in range(0, 200, 5)]
+    deck = tmp_path / "bb0.dat"
+    deck.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "o"
+    code, _, err = run_cli(["run", "lieng1", str(deck), "-o", str(out), "--no-plots"], capsys)
+    assert code == 0
+    assert "warning" in err and "divides by zero" in err
+    listing = (out / "listing.txt").read_text()
+    assert "FROM SLOPE(LLL).LT.SLOPE(MMM)" in listing and "NaN" in listing
+    data = np.loadtxt(out / "trajectories.csv", delimiter=",", skiprows=1)
+    assert np.all(np.isfinite(data))

@@ -8,6 +8,7 @@ columns for a deck, the argument and index for the Python API).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Callable
 
@@ -95,7 +96,7 @@ def check_characteristic(xchl, ychl, locate: Locate = api_locator) -> tuple[np.n
     return x, y
 
 
-def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator) -> Centre:
+def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator, *, undefined: str = "raise") -> Centre:
     """Slopes and centre of symmetry of a characteristic, as PINPUT finds them.
 
     Parameters
@@ -104,6 +105,11 @@ def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator) -> Centre:
         The characteristic line, YCHL strictly decreasing.
     locate : callable, optional
         Names a point in error messages.
+    undefined : {"raise", "warn"}, optional
+        What to do when the equal-slope interpolation divides by zero: raise
+        :class:`CentreUndefined`, or warn and return the centre as NaN (with
+        the slopes and the run LLL..MMM as found).  A characteristic with no
+        negative slope always raises.
 
     Returns
     -------
@@ -125,11 +131,16 @@ def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator) -> Centre:
             f"segments 1..{n - 2} (FORMAT 1175): the centre of symmetry cannot be found"
         )
     if status == 3:
-        raise CentreUndefined(
+        msg = (
             f"{locate('XCHL', where)}..{locate('XCHL', where + 2)}: segments {where} and {where + 1} of the "
             f"negative-slope run have equal slopes, so the equal-slope interpolation of PINPUT "
             f"(statement 210/220) divides by zero: the centre of symmetry is undefined"
         )
+        if undefined != "warn":
+            raise CentreUndefined(msg)
+        warnings.warn(f"{msg}; XMDL and YMDL are NaN", stacklevel=2)
+        return Centre(np.asarray(slope[: n - 1]).copy(), int(isel), int(lll), int(mmm), int(branch),
+                      float("nan"), float("nan"))
     if status != 0:  # pragma: no cover - ruled out by check_characteristic
         raise LiengInputError(f"characteristic rejected by the core (status {status} at {where})")
     return Centre(np.asarray(slope[: n - 1]).copy(), int(isel), int(lll), int(mmm), int(branch),

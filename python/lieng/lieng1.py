@@ -235,7 +235,9 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
     """
     x, y = check_characteristic(xchl, ychl, _locate)
     try:
-        centre = centre_of_symmetry(x, y, _locate)
+        # LIENG-1's construction does not use the centre: an undefined
+        # equal-slope interpolation only makes XMDL, YMDL NaN
+        centre = centre_of_symmetry(x, y, _locate, undefined="warn")
     except CentreUndefined as exc:
         if _strict_centre:
             raise
