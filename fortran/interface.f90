@@ -126,3 +126,71 @@ subroutine core_advance(n, xchl, ychl, dtheta, nsteps, lookup, x, y, t, status, 
    integer, intent(out) :: where               !< the failing step
    call point_advance(n, xchl, ychl, dtheta, nsteps, lookup, x, y, t, status, where)
 end subroutine core_advance
+
+!> The MLIEN run (App. 6).
+subroutine core_mlien(n, xchl0, ychl0, dtheta, omega, ampv0, xinp, yinp, npts, trig, lookup, &
+                      x, y, t, r, xmdl, ymdl, xchl, ychl, status, where)
+   use lienard_core, only: wp
+   use mlien, only: mlien_run
+   implicit none
+   integer, intent(in) :: n                    !< number of points of the characteristic
+   real(wp), intent(in) :: xchl0(n)            !< abscissae as read
+   real(wp), intent(in) :: ychl0(n)            !< ordinates as read
+   real(wp), intent(in) :: dtheta              !< DTHETA
+   real(wp), intent(in) :: omega               !< OMEGA
+   real(wp), intent(in) :: ampv0               !< AMPV0
+   real(wp), intent(in) :: xinp                !< XINP
+   real(wp), intent(in) :: yinp                !< YINP
+   integer, intent(in) :: npts                 !< points
+   real(wp), intent(in) :: trig(4)             !< OMINTR, OMETRI, ATRI, BTRI
+   integer, intent(in) :: lookup               !< 0 listing, 1 bisect, 2 fast
+   real(wp), intent(out) :: x(npts)            !< X
+   real(wp), intent(out) :: y(npts)            !< Y
+   real(wp), intent(out) :: t(npts)            !< T
+   real(wp), intent(out) :: r(npts)            !< R of each step
+   real(wp), intent(out) :: xmdl(npts)         !< XMDL in force at each point
+   real(wp), intent(out) :: ymdl(npts)         !< YMDL in force at each point
+   real(wp), intent(out) :: xchl(n)            !< last position of the characteristic
+   real(wp), intent(out) :: ychl(n)            !< its ordinates
+   integer, intent(out) :: status              !< 0 or an error code
+   integer, intent(out) :: where               !< L of the failure
+   call mlien_run(n, xchl0, ychl0, dtheta, omega, ampv0, xinp, yinp, npts, trig, lookup, &
+                  x, y, t, r, xmdl, ymdl, xchl, ychl, status, where)
+end subroutine core_mlien
+
+!> One TIMDIS translation of a characteristic, in place.
+subroutine core_timdis(n, xchl, ychl, vo, ampv0, omega, tl, diff, adiff, status)
+   use lienard_core, only: wp
+   use mlien, only: timdis
+   implicit none
+   integer, intent(in) :: n                    !< number of points
+   real(wp), intent(inout) :: xchl(n)          !< abscissae, translated in place
+   real(wp), intent(inout) :: ychl(n)          !< ordinates, translated in place
+   real(wp), intent(in) :: vo                  !< VO
+   real(wp), intent(in) :: ampv0               !< AMPV0
+   real(wp), intent(in) :: omega               !< OMEGA
+   real(wp), intent(in) :: tl                  !< T(L)
+   real(wp), intent(out) :: diff               !< DIFF
+   real(wp), intent(out) :: adiff              !< ADIFF
+   integer, intent(out) :: status              !< 0 or 9 (DIFF outside the characteristic)
+   call timdis(n, xchl, ychl, vo, ampv0, omega, tl, diff, adiff, status)
+end subroutine core_timdis
+
+!> The triggering offset of MLIEN's POINT at M times.
+subroutine core_trigger(m, tn, omintr, ometri, atri, btri, xtri, ytri)
+   use lienard_core, only: wp
+   use mlien, only: trigger_offset
+   implicit none
+   integer, intent(in) :: m                    !< number of times
+   real(wp), intent(in) :: tn(m)               !< T(L+1)
+   real(wp), intent(in) :: omintr              !< OMINTR
+   real(wp), intent(in) :: ometri              !< OMETRI
+   real(wp), intent(in) :: atri                !< ATRI
+   real(wp), intent(in) :: btri                !< BTRI
+   real(wp), intent(out) :: xtri(m)            !< XTRI
+   real(wp), intent(out) :: ytri(m)            !< YTRI
+   integer :: i
+   do i = 1, m
+      call trigger_offset(tn(i), omintr, ometri, atri, btri, xtri(i), ytri(i))
+   end do
+end subroutine core_trigger

@@ -108,6 +108,8 @@ contains
       integer :: k, i, l, ll, mm
       real(wp) :: a, slopex, aa, bb, cc, dd, xx, yy
 
+      aa = 0.0_wp; bb = 0.0_wp
+
       isel = 0; lll = 0; mmm = 0; branch = 0
       xmdl = 0.0_wp; ymdl = 0.0_wp
       if (n < 3) then
@@ -173,28 +175,34 @@ contains
          slopex = slope(mmm)
          aa = slopex - slope(lll)
          bb = slope(lll + 1) - slope(lll)
-         if (bb == 0.0_wp) then
-            status = st_centre_undefined
-            where = lll
-            return
-         end if
-         cc = xchl(lll + 1) - xchl(lll)
-         xx = (aa/bb)*cc + xchl(lll)
-         dd = ychl(lll + 1) - ychl(lll)
-         yy = (aa/bb)*dd + ychl(lll)
-         xmdl = (xx + xchl(mmm))/2.0_wp
-         ymdl = (yy + ychl(mmm))/2.0_wp
       else if (slope(lll) > slope(mmm)) then
          ! 220
          branch = 1
          slopex = slope(lll)
          aa = slopex - slope(mmm - 1)
          bb = slope(mmm) - slope(mmm - 1)
-         if (bb == 0.0_wp) then
+      end if
+      if (branch /= 0 .and. bb == 0.0_wp) then
+         ! The listing divides by zero here.  When SLOPE(LLL) and SLOPE(MMM)
+         ! differ only by rounding (a straight stick part, or one translated
+         ! by TIMDIS) the intended branch is the equal-slope one; otherwise
+         ! the centre is undefined.
+         if (abs(slope(mmm) - slope(lll)) <= 64*epsilon(1.0_wp)*max(abs(slope(lll)), abs(slope(mmm)))) then
+            branch = 0
+         else
             status = st_centre_undefined
-            where = mmm - 1
+            where = merge(lll, mmm - 1, branch < 0)
             return
          end if
+      end if
+      if (branch < 0) then
+         cc = xchl(lll + 1) - xchl(lll)
+         xx = (aa/bb)*cc + xchl(lll)
+         dd = ychl(lll + 1) - ychl(lll)
+         yy = (aa/bb)*dd + ychl(lll)
+         xmdl = (xx + xchl(mmm))/2.0_wp
+         ymdl = (yy + ychl(mmm))/2.0_wp
+      else if (branch > 0) then
          cc = xchl(mmm) - xchl(mmm - 1)
          xx = (aa/bb)*cc + xchl(mmm - 1)
          dd = ychl(mmm) - ychl(mmm - 1)
@@ -202,7 +210,6 @@ contains
          xmdl = (xx + xchl(lll))/2.0_wp
          ymdl = (yy + ychl(lll))/2.0_wp
       else
-         branch = 0
          xmdl = (xchl(lll) + xchl(mmm))/2.0_wp
          ymdl = (ychl(lll) + ychl(mmm))/2.0_wp
       end if

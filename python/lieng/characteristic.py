@@ -15,9 +15,11 @@ from typing import Callable
 import numpy as np
 
 from . import _core
+from .cards import Card, card_location, write_cards
 from .errors import CentreUndefined, LiengInputError
 
-__all__ = ["Centre", "check_characteristic", "centre_of_symmetry", "api_locator", "NMAX_DECK"]
+__all__ = ["Centre", "check_characteristic", "centre_of_symmetry", "api_locator", "NMAX_DECK",
+           "CHAR_CARDS", "DeckBase"]
 
 #: DIMENSION XCHL(200), YCHL(200) of the listings.
 NMAX_DECK = 200
@@ -145,3 +147,69 @@ def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator, *, undefined: s
         raise LiengInputError(f"characteristic rejected by the core (status {status} at {where})")
     return Centre(np.asarray(slope[: n - 1]).copy(), int(isel), int(lll), int(mmm), int(branch),
                   float(xmdl), float(ymdl))
+
+
+#: The 40 XCHL and 40 YCHL cards (5F10.2) both programs read whatever N is.
+CHAR_CARDS: list[Card] = (
+    [Card("(5F10.2)", tuple(f"XCHL({5 * c + i + 1})" for i in range(5))) for c in range(40)]
+    + [Card("(5F10.2)", tuple(f"YCHL({5 * c + i + 1})" for i in range(5))) for c in range(40)]
+)
+
+
+def char_from_values(v: dict) -> tuple[np.ndarray, np.ndarray]:
+    """XCHL(1..200), YCHL(1..200) from a deck's ``{name: value}``."""
+    xchl = np.array([v[f"XCHL({j})"] for j in range(1, NMAX_DECK + 1)], dtype=float)
+    ychl = np.array([v[f"YCHL({j})"] for j in range(1, NMAX_DECK + 1)], dtype=float)
+    return xchl, ychl
+
+
+class DeckBase:
+    """What the LIENG-1 and MLIEN decks share: the characteristic cards,
+    card-and-column locations, writing, and PINPUT's missing checks.
+
+    Subclasses are dataclasses with ``n``, ``dtheta``, ``xchl``, ``ychl``,
+    ``source`` and a class attribute ``layout``; they define ``scalars()``.
+    """
+
+    layout: list = []
+
+    def scalars(self) -> dict:  # pragma: no cover - defined by each program
+        raise NotImplementedError
+
+    def values(self) -> dict:
+        """``{field name: value}`` in the names of the layout."""
+        v = dict(self.scalars())
+        xchl = np.zeros(NMAX_DECK)
+        ychl = np.zeros(NMAX_DECK)
+        xchl[: len(self.xchl)] = self.xchl[:NMAX_DECK]
+        ychl[: len(self.ychl)] = self.ychl[:NMAX_DECK]
+        for j in range(NMAX_DECK):
+            v[f"XCHL({j + 1})"] = float(xchl[j])
+            v[f"YCHL({j + 1})"] = float(ychl[j])
+        return v
+
+    def to_lines(self) -> list[str]:
+        """The deck's cards (each reads back to the same value)."""
+        return write_cards(self.values(), self.layout)
+
+    def locate(self, name: str) -> str:
+        """'<source>: card C, columns A-B (NAME, Fw.d)'."""
+        return f"{self.source}: {card_location(self.layout, name)}"
+
+    def locator(self) -> Locate:
+        """A ``locate`` callback naming characteristic points by card and columns."""
+        return lambda kind, j: self.locate(f"{kind}({j})")
+
+    def check_characteristic_fields(self) -> None:
+        """N in 3..200, DTHETA > 0, and the characteristic's own checks."""
+        if not 3 <= self.n <= NMAX_DECK:
+            hint = ""
+            if self.n > NMAX_DECK:
+                hint = " (blanks after the digits count as zeros: right-justify N in columns 1-5)"
+            raise LiengInputError(
+                f"{self.locate('N')}: N = {self.n} is out of range: the characteristic needs "
+                f"3 <= N <= {NMAX_DECK} points (DIMENSION XCHL(200)){hint}"
+            )
+        if not (self.dtheta > 0 and np.isfinite(self.dtheta)):
+            raise LiengInputError(f"{self.locate('DTHETA')}: DTHETA = {self.dtheta:g} must be positive")
+        check_characteristic(self.xchl[: self.n], self.ychl[: self.n], self.locator())

@@ -27,39 +27,27 @@ from typing import Sequence
 import numpy as np
 
 from . import _core
-from .cards import Card, card_location, read_cards, write_cards
-from .characteristic import NMAX_DECK, Centre, api_locator, centre_of_symmetry, check_characteristic
+from .cards import Card, read_cards
+from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
+                             char_from_values, check_characteristic)
 from .errors import CentreUndefined, LiengInputError
 
-__all__ = ["LAYOUT", "Deck", "Lieng1Result", "lieng1", "run_deck", "LOOKUP_MODES"]
+__all__ = ["LAYOUT", "Deck", "Lieng1Result", "lieng1", "run_deck", "LOOKUP_MODES", "lookup_code"]
 
 #: Modes of the POINT step: "listing" (the 1971 linear scan and ATAN/SIN/COS),
 #: "bisect" (bisection look-up, bit-identical results), "fast" (bisection and
 #: DX = DTHETA*|Y|, DY = DTHETA*|XK|: exact-arithmetic equal, last bits differ).
 LOOKUP_MODES = {"listing": 0, "bisect": 1, "fast": 2}
 
-LAYOUT: list[Card] = (
-    [
-        Card("(I1)", ("KEY",)),
-        Card("(2F10.4)", ("XINCR", "YINCR")),
-        Card("(I5,5F10.2)", ("N", "OMEGA", "AMPV0", "XINP", "YINP", "DTHETA")),
-    ]
-    + [Card("(5F10.2)", tuple(f"XCHL({5 * c + i + 1})" for i in range(5))) for c in range(40)]
-    + [Card("(5F10.2)", tuple(f"YCHL({5 * c + i + 1})" for i in range(5))) for c in range(40)]
-)
-
-
-def deck_locator(layout: Sequence[Card], source: str):
-    """A ``locate`` callback naming a characteristic point by card and columns."""
-
-    def locate(kind: str, j: int) -> str:
-        return f"{source}: {card_location(layout, f'{kind}({j})')}"
-
-    return locate
+LAYOUT: list[Card] = [
+    Card("(I1)", ("KEY",)),
+    Card("(2F10.4)", ("XINCR", "YINCR")),
+    Card("(I5,5F10.2)", ("N", "OMEGA", "AMPV0", "XINP", "YINP", "DTHETA")),
+] + CHAR_CARDS
 
 
 @dataclass
-class Deck:
+class Deck(DeckBase):
     """The values of a LIENG-1 deck, as PINPUT reads them."""
 
     key: int = 1
@@ -82,49 +70,22 @@ class Deck:
     def from_lines(cls, lines: Sequence[str], source: str = "deck") -> "Deck":
         """Read the deck's cards; raises LiengInputError naming card and columns."""
         v = read_cards(lines, LAYOUT, source)
-        xchl = np.array([v[f"XCHL({j})"] for j in range(1, NMAX_DECK + 1)], dtype=float)
-        ychl = np.array([v[f"YCHL({j})"] for j in range(1, NMAX_DECK + 1)], dtype=float)
+        xchl, ychl = char_from_values(v)
         deck = cls(v["KEY"], v["XINCR"], v["YINCR"], v["N"], v["OMEGA"], v["AMPV0"], v["XINP"],
                    v["YINP"], v["DTHETA"], xchl, ychl, source)
         deck.check()
         return deck
 
-    def values(self) -> dict:
-        """``{field name: value}`` in the names of the layout."""
-        v = {"KEY": self.key, "XINCR": self.xincr, "YINCR": self.yincr, "N": self.n,
-             "OMEGA": self.omega, "AMPV0": self.ampv0, "XINP": self.xinp, "YINP": self.yinp,
-             "DTHETA": self.dtheta}
-        xchl = np.zeros(NMAX_DECK)
-        ychl = np.zeros(NMAX_DECK)
-        xchl[: len(self.xchl)] = self.xchl[:NMAX_DECK]
-        ychl[: len(self.ychl)] = self.ychl[:NMAX_DECK]
-        for j in range(NMAX_DECK):
-            v[f"XCHL({j + 1})"] = float(xchl[j])
-            v[f"YCHL({j + 1})"] = float(ychl[j])
-        return v
-
-    def to_lines(self) -> list[str]:
-        """The deck's cards (each reads back to the same value)."""
-        return write_cards(self.values(), LAYOUT)
-
-    def locate(self, name: str) -> str:
-        return f"{self.source}: {card_location(LAYOUT, name)}"
+    def scalars(self) -> dict:
+        return {"KEY": self.key, "XINCR": self.xincr, "YINCR": self.yincr, "N": self.n,
+                "OMEGA": self.omega, "AMPV0": self.ampv0, "XINP": self.xinp, "YINP": self.yinp,
+                "DTHETA": self.dtheta}
 
     def check(self) -> None:
-        """The checks PINPUT lacked: N in 3..200, the characteristic, DTHETA."""
+        """The checks PINPUT lacked: KEY a digit, N in 3..200, the characteristic, DTHETA."""
         if not 0 <= self.key <= 9:
             raise LiengInputError(f"{self.locate('KEY')}: KEY = {self.key} must be a digit 0-9")
-        if not 3 <= self.n <= NMAX_DECK:
-            hint = ""
-            if self.n > NMAX_DECK:
-                hint = " (blanks after the digits count as zeros: right-justify N in columns 1-5)"
-            raise LiengInputError(
-                f"{self.locate('N')}: N = {self.n} is out of range: the characteristic needs "
-                f"3 <= N <= {NMAX_DECK} points (DIMENSION XCHL(200)){hint}"
-            )
-        if not (self.dtheta > 0 and math.isfinite(self.dtheta)):
-            raise LiengInputError(f"{self.locate('DTHETA')}: DTHETA = {self.dtheta:g} must be positive")
-        check_characteristic(self.xchl[: self.n], self.ychl[: self.n], deck_locator(LAYOUT, self.source))
+        self.check_characteristic_fields()
 
     def run(self, lookup: str = "listing") -> "Lieng1Result":
         """Run the deck as the 1971 program did: 9 trajectories of 3000 points."""
@@ -259,11 +220,9 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
             raise LiengInputError(f"{k} = {v} is not a finite number")
     if not float(dtheta) > 0:
         raise LiengInputError(f"dtheta = {dtheta} must be positive")
-    if lookup not in LOOKUP_MODES:
-        raise LiengInputError(f"lookup = {lookup!r}: choose one of {', '.join(LOOKUP_MODES)}")
     X, Y, T, status, where, itraj = _core.core_lieng1(
         x, y, float(dtheta), float(xinp), float(yinp), float(xincr), float(yincr), ntraj, npts,
-        LOOKUP_MODES[lookup])
+        lookup_code(lookup))
     starts = np.empty((ntraj, 2))
     xs, ys = float(xinp), float(yinp)
     for k in range(ntraj):
@@ -274,6 +233,13 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
         raise _status_error(int(status), int(where), int(itraj), *starts[int(itraj) - 1], _locate_start)
     return Lieng1Result(np.ascontiguousarray(X.T), np.ascontiguousarray(Y.T), np.ascontiguousarray(T.T),
                         centre.xmdl, centre.ymdl, centre, x, y, starts, float(dtheta))
+
+
+def lookup_code(lookup: str) -> int:
+    """The core's integer for a POINT mode name."""
+    if lookup not in LOOKUP_MODES:
+        raise LiengInputError(f"lookup = {lookup!r}: choose one of {', '.join(LOOKUP_MODES)}")
+    return LOOKUP_MODES[lookup]
 
 
 def phi_of(ymdl: float, ampv0: float) -> float:
@@ -288,7 +254,7 @@ def run_deck(deck: Deck, lookup: str = "listing", ntraj: int = 9, npts: int = 30
     deck.check()
     n = deck.n
     res = lieng1(deck.xchl[:n], deck.ychl[:n], deck.xinp, deck.yinp, deck.dtheta, deck.xincr, deck.yincr,
-                 ntraj=ntraj, npts=npts, lookup=lookup, _locate=deck_locator(LAYOUT, deck.source),
+                 ntraj=ntraj, npts=npts, lookup=lookup, _locate=deck.locator(),
                  _locate_start=f"{deck.source}: card 3, columns 26-45 (XINP, YINP)", _strict_centre=True)
     if math.isnan(phi_of(res.ymdl, deck.ampv0)):
         warnings.warn(
