@@ -55,6 +55,10 @@ module lienard_core
    !>   without the three transcendental calls; differs in the last bits.
    integer, parameter, public :: lookup_listing = 0, lookup_bisect = 1, mode_fast = 2
 
+   !> Relative difference below which SLOPE(LLL) and SLOPE(MMM) are equal in
+   !> the centre search (rounding, not geometry; see centre_of_symmetry).
+   real(wp), parameter, public :: slope_rtol = 1.0e-9_wp
+
 contains
 
    !> Slopes of the characteristic line, DO 90 of PINPUT:
@@ -169,13 +173,21 @@ contains
       end do
       mmm = mm - 1
 
-      if (slope(lll) < slope(mmm)) then
+      ! The listing compares SLOPE(LLL) and SLOPE(MMM) exactly.  Slopes of a
+      ! straight run differ only by rounding (more so after TIMDIS has moved
+      ! the line many times), and then AA/BB at 210/220 is a ratio of two
+      ! rounding errors that throws the centre anywhere, or divides by zero.
+      ! Within slope_rtol the slopes are taken as equal (statement 2001's
+      ! branch), which is the listing's intent; RESTORATION.md, P19.
+      if (abs(slope(mmm) - slope(lll)) <= slope_rtol*max(abs(slope(lll)), abs(slope(mmm)))) then
+         branch = 0
+      else if (slope(lll) < slope(mmm)) then
          ! 210
          branch = -1
          slopex = slope(mmm)
          aa = slopex - slope(lll)
          bb = slope(lll + 1) - slope(lll)
-      else if (slope(lll) > slope(mmm)) then
+      else
          ! 220
          branch = 1
          slopex = slope(lll)
@@ -183,17 +195,10 @@ contains
          bb = slope(mmm) - slope(mmm - 1)
       end if
       if (branch /= 0 .and. bb == 0.0_wp) then
-         ! The listing divides by zero here.  When SLOPE(LLL) and SLOPE(MMM)
-         ! differ only by rounding (a straight stick part, or one translated
-         ! by TIMDIS) the intended branch is the equal-slope one; otherwise
-         ! the centre is undefined.
-         if (abs(slope(mmm) - slope(lll)) <= 64*epsilon(1.0_wp)*max(abs(slope(lll)), abs(slope(mmm)))) then
-            branch = 0
-         else
-            status = st_centre_undefined
-            where = merge(lll, mmm - 1, branch < 0)
-            return
-         end if
+         ! the listing divides by zero: the centre is undefined
+         status = st_centre_undefined
+         where = merge(lll, mmm - 1, branch < 0)
+         return
       end if
       if (branch < 0) then
          cc = xchl(lll + 1) - xchl(lll)

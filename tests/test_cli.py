@@ -85,17 +85,16 @@ def test_listing_matches_gfortran_writing_the_same_formats(tmp_path, gfortran, m
     calls = []
     real_w = listing_mod._w
 
-    def spy(records, fmt_no, *values):
-        calls.append((fmt_no, values))
-        real_w(records, fmt_no, *values)
+    def spy(records, fmt_no, *values, formats=listing_mod.FORMATS_LIENG1):
+        calls.append((formats[fmt_no], values))
+        real_w(records, fmt_no, *values, formats=formats)
 
     monkeypatch.setattr(listing_mod, "_w", spy)
     deck = read_deck(DEMO)
     res = deck.run()
     mine = listing_mod.lieng1_listing(deck, res)
     src = ["program p", "implicit none", "real(8) :: nan", "nan = 0d0", "nan = nan/nan"]
-    for fmt_no, values in calls:
-        fmt = listing_mod.FORMATS_LIENG1[fmt_no]
+    for fmt, values in calls:
         lits = []
         for v in values:
             if isinstance(v, (int, np.integer)):

@@ -3,6 +3,7 @@
 The 1971 programs (thesis, Imperial College London):
 
 * :func:`lieng1` -- LIENG-1 (App. 4), phase portraits by Lienard's construction.
+* :func:`mlien` -- MLIEN / LIENG-2 (App. 6), driving velocity v0(t) and triggering.
 
 Card decks: :func:`read_deck`, :func:`write_deck`.  Bad input raises
 :class:`LiengInputError` with a one-line message naming the card and columns.
@@ -12,14 +13,18 @@ from .cards import read_deck, write_deck
 from .characteristic import centre_of_symmetry
 from .errors import LiengInputError
 from .lieng1 import Lieng1Result, lieng1
+from . import mlien as mlien_module
+from .mlien import MlienResult, mlien
 
 __version__ = "0.1.0"
 
 __all__ = [
     "LiengInputError",
     "Lieng1Result",
+    "MlienResult",
     "centre_of_symmetry",
     "lieng1",
+    "mlien",
     "read_deck",
     "write_deck",
 ]

@@ -17,7 +17,7 @@ from .errors import LiengInputError
 
 __all__ = ["main"]
 
-PROGRAMS = ("lieng1",)
+PROGRAMS = ("lieng1", "mlien")
 
 
 def _run_lieng1(args) -> int:
@@ -52,6 +52,33 @@ def _run_lieng1(args) -> int:
     return 0
 
 
+def _run_mlien(args) -> int:
+    from .cards import read_deck
+    from .graf import mlien_plots
+    from .listing import mlien_listing
+    from .mlien import run_deck
+    from .outputs import staged_outdir, write_csv, write_lines
+
+    deck = read_deck(args.deck, program="mlien")
+    res = run_deck(deck, lookup=args.lookup)
+    listing = mlien_listing(deck, res)
+    with staged_outdir(args.outdir) as tmp:
+        write_lines(tmp / "listing.txt", listing)
+        write_csv(tmp / "trajectories.csv", ["traj", "i", "x", "y", "t"],
+                  ((1, i + 1, float(res.x[i]), float(res.y[i]), float(res.t[i])) for i in range(res.npts)))
+        write_csv(tmp / "characteristic_last.csv", ["x", "y"],
+                  ((float(a), float(b)) for a, b in zip(res.xchl_last, res.ychl_last)))
+        if not args.no_plots:
+            mlien_plots(res, tmp)
+    if not args.quiet:
+        trig = "card 83" if deck.trigger is not None else "listing values"
+        print(f"mlien: {res.npts} points from T = {res.t[0]:.6g} to {res.t[-1]:.6g}; VO(0) = {res.vo:.6g}, "
+              f"PHI = {res.phi:.6g}; triggering {res.trigger} ({trig})")
+        print(f"wrote {Path(args.outdir) / 'listing.txt'}, trajectories.csv, characteristic_last.csv"
+              + ("" if args.no_plots else ", phase_plane.png, displacement_time.png, velocity_time.png"))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="lieng",
@@ -78,7 +105,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         if args.command == "run":
-            return {"lieng1": _run_lieng1}[args.program](args)
+            return {"lieng1": _run_lieng1, "mlien": _run_mlien}[args.program](args)
         parser.error(f"unknown command {args.command}")  # pragma: no cover
     except LiengInputError as exc:
         print(f"lieng: error: {exc}", file=sys.stderr)

@@ -17,7 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["graf", "lieng1_plots"]
+__all__ = ["graf", "lieng1_plots", "mlien_plots"]
 
 
 def graf(curves: Sequence[tuple], path, *, xlabel: str, ylabel: str, title: str, caption: str = "",
@@ -90,3 +90,27 @@ def lieng1_plots(result, outdir) -> list[Path]:
              title="Velocity against time", caption=cap, labels=labels),
     ]
     return paths
+
+
+def mlien_plots(result, outdir) -> list[Path]:
+    """The three GRAF plots of MLIEN: the phase plane with the last position
+    of the characteristic, x-t and v-t, every 5th point (X(5), X(10), ...)."""
+    outdir = Path(outdir)
+    sel = slice(4, None, 5)
+    x, y, t = result.x[sel], result.y[sel], result.t[sel]
+    a = result.trigger
+    cap = (f"MLIEN (Antoniou 1971, App. 6): v0 = {result.ampv0:g} cos({result.omega:g} t), DTHETA = "
+           f"{result.dtheta:g}, triggering OMINTR={a[0]:g} OMETRI={a[1]:g} ATRI={a[2]:g} BTRI={a[3]:g}")
+    return [
+        graf([(result.xchl_last, result.ychl_last), (x, y)], outdir / "phase_plane.png",
+             xlabel="displacement x (mm)", ylabel="velocity v (mm/s)",
+             title="Phase plane with the last position of the characteristic", caption=cap,
+             labels=["characteristic (last position)", "trajectory"],
+             styles=[{"color": "k", "lw": 1.6}, {"lw": 0.8}], equal=True),
+        graf([(t, x)], outdir / "displacement_time.png", xlabel="time T (1/omega_n units)",
+             ylabel="displacement x (mm)", title="Displacement against time", caption=cap),
+        graf([(t, y), (result.t, result.ymdl)], outdir / "velocity_time.png", xlabel="time T (1/omega_n units)",
+             ylabel="velocity v (mm/s)", title="Velocity against time, with the driving velocity VO(t)",
+             caption=cap, labels=["trajectory", "VO = YMDL of the moved characteristic"],
+             styles=[{"lw": 0.9}, {"color": "0.4", "lw": 0.8, "ls": "--"}]),
+    ]

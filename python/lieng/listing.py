@@ -15,7 +15,7 @@ import numpy as np
 
 from .cards import write_record
 
-__all__ = ["FORMATS_LIENG1", "lieng1_listing"]
+__all__ = ["FORMATS_LIENG1", "FORMATS_MLIEN", "lieng1_listing", "mlien_listing"]
 
 
 def _h(text: str, width: int) -> str:
@@ -49,8 +49,44 @@ FORMATS_LIENG1 = {
 }
 
 
-def _w(records: list[str], fmt_no: int, *values) -> None:
-    records.extend(write_record(FORMATS_LIENG1[fmt_no], values))
+#: MLIEN (App. 6): its PINPUT header (under IF(KEY.EQ.0) GO TO 410, with M
+#: and DTHETA in E10.2), CHALIN's 1005 with E20.8, and the trial-run print.
+FORMATS_MLIEN = dict(FORMATS_LIENG1)
+FORMATS_MLIEN.update({
+    41: (
+        "(1H1,42HLIENARD'S GRAPHICAL CONSTRACTION WITH DATA,//"
+        "44H THE CHARACTERISTIC LINE IS DETERMINED WITH ,I5,8H POINTS ,/"
+        "24H THE CYCLIC FREQUENCY IS,F10.5,11HRAD PER SEC,/"
+        "51H THE AMPLITUDE OF THE DRIVING VELOCITY VARIATION IS,F10.5,10HMM PER SEC,/"
+        "45H THE COORDINATES OF THE INITIAL POINT ARE X= ,F10.2,5X,2HY=,F10.2,5H MM  ,/"
+        "25H THE ANGLE INCREMENT IS  ,E10.2,4HRADS,/"
+        "35H THE SLOPE COMPARISON FACTOR IS M= ,I7//////////)"
+    ),
+    1005: "(///I20,E20.8)",
+    1010: "(6F10.3,I8)",
+})
+
+
+def _w(records: list[str], fmt_no: int, *values, formats=FORMATS_LIENG1) -> None:
+    records.extend(write_record(formats[fmt_no], values))
+
+
+def _char_echo(out: list[str], deck, centre, formats) -> None:
+    """PINPUT's echo of the characteristic cards and the slope table and
+    centre search (KEY /= 0)."""
+    for j in range(0, 200, 5):
+        _w(out, 30, *deck.xchl[j : j + 5], formats=formats)
+    for j in range(0, 200, 5):
+        _w(out, 33, *deck.ychl[j : j + 5], formats=formats)
+    n = deck.n
+    xc, yc = deck.xchl, deck.ychl
+    slope = centre.slope
+    for j in range(n - 1):
+        _w(out, 1000, j + 1, xc[j], yc[j], xc[j] - xc[j + 1], yc[j] - yc[j + 1], slope[j], formats=formats)
+    _w(out, 1001, n, xc[n - 1], yc[n - 1], formats=formats)
+    if centre.isel > 0:
+        _w(out, 1005, centre.isel, slope[centre.isel - 1], formats=formats)
+        _w(out, {0: 1006, -1: 1007, 1: 1008}[centre.branch], centre.xmdl, centre.ymdl, formats=formats)
 
 
 def lieng1_listing(deck, result) -> list[str]:
@@ -73,19 +109,7 @@ def lieng1_listing(deck, result) -> list[str]:
     # PINPUT
     _w(out, 41, deck.n, deck.omega, deck.ampv0, deck.xinp, deck.yinp, deck.dtheta, deck.xincr, deck.yincr)
     if key != 0:
-        for j in range(0, 200, 5):
-            _w(out, 30, *deck.xchl[j : j + 5])
-        for j in range(0, 200, 5):
-            _w(out, 33, *deck.ychl[j : j + 5])
-        n = deck.n
-        xc, yc = deck.xchl, deck.ychl
-        slope = result.centre.slope
-        for j in range(n - 1):
-            _w(out, 1000, j + 1, xc[j], yc[j], xc[j] - xc[j + 1], yc[j] - yc[j + 1], slope[j])
-        _w(out, 1001, n, xc[n - 1], yc[n - 1])
-        c = result.centre
-        _w(out, 1005, c.isel, slope[c.isel - 1])
-        _w(out, {0: 1006, -1: 1007, 1: 1008}[c.branch], c.xmdl, c.ymdl)
+        _char_echo(out, deck, result.centre, FORMATS_LIENG1)
         _w(out, 4012)
     else:
         _w(out, 4011)
@@ -101,4 +125,27 @@ def lieng1_listing(deck, result) -> list[str]:
             for i in range(l0, min(l0 + 60, npts), 10):
                 vals += [x[i], y[i], t[i], i + 1]
             _w(out, 80, *vals)
+    return [ln.rstrip() for ln in out]
+
+
+def mlien_listing(deck, result) -> list[str]:
+    """The MLIEN line-printer output for a deck and its result.
+
+    PINPUT's header and echo (KEY /= 0), the first CHALIN's slope table and
+    centre (KEY /= 0; the listing repeats them at every one of the 3000
+    CHALIN calls, which the port does not, see RESTORATION.md), then the
+    trial-run lines R, X, Y, T, XMDL, YMDL, L (FORMAT 1010) at
+    L = 1, 9, 19, ..., 2999.
+    """
+    from .mlien import trial_run_points
+
+    out: list[str] = []
+    if deck.key != 0:
+        _w(out, 41, deck.n, deck.omega, deck.ampv0, deck.xinp, deck.yinp, deck.dtheta, deck.m,
+           formats=FORMATS_MLIEN)
+        _char_echo(out, deck, result.centre, FORMATS_MLIEN)
+    for ll in trial_run_points(result.npts):
+        i = ll - 1
+        _w(out, 1010, result.r[i], result.x[i], result.y[i], result.t[i], result.xmdl[i], result.ymdl[i], ll,
+           formats=FORMATS_MLIEN)
     return [ln.rstrip() for ln in out]
