@@ -37,6 +37,7 @@ install: $(STAMP)
 demo: install
 	rm -rf out
 	$(LIENG) run lieng1 cards/lieng1_demo.dat -o out/lieng1
+	$(LIENG) run mlien cards/mlien_a9_7.dat -o out/mlien
 	@echo "demo written to out/"
 
 test: install
