@@ -194,3 +194,46 @@ subroutine core_trigger(m, tn, omintr, ometri, atri, btri, xtri, ytri)
       call trigger_offset(tn(i), omintr, ometri, atri, btri, xtri(i), ytri(i))
    end do
 end subroutine core_trigger
+
+!> Return map on the abscissa: exact flow (mode 3) or the listing's POINT
+!> step with DTHETA (modes 0-2, as lookup).
+subroutine core_return_map(n, xchl, ychl, mode, dtheta, m, x0, tmax, maxsteps, xleft, xright, period, status)
+   use lienard_core, only: wp
+   use cycles, only: return_map_exact, return_map_faithful
+   implicit none
+   integer, intent(in) :: n                    !< number of points of the characteristic
+   real(wp), intent(in) :: xchl(n)             !< abscissae
+   real(wp), intent(in) :: ychl(n)             !< ordinates, strictly decreasing
+   integer, intent(in) :: mode                 !< 0-2 faithful (POINT mode), 3 exact
+   real(wp), intent(in) :: dtheta              !< DTHETA (faithful)
+   integer, intent(in) :: m                    !< number of starting points
+   real(wp), intent(in) :: x0(m)               !< starting abscissae
+   real(wp), intent(in) :: tmax                !< time limit per half turn (exact)
+   integer, intent(in) :: maxsteps             !< step limit per half turn (faithful)
+   real(wp), intent(out) :: xleft(m)           !< left crossing
+   real(wp), intent(out) :: xright(m)          !< right crossing, P(X0)
+   real(wp), intent(out) :: period(m)          !< time of the revolution
+   integer, intent(out) :: status(m)           !< 0, or 10 when the trajectory does not return
+   if (mode == 3) then
+      call return_map_exact(n, xchl, ychl, m, x0, tmax, xleft, xright, period, status)
+   else
+      call return_map_faithful(n, xchl, ychl, dtheta, mode, m, x0, maxsteps, xleft, xright, period, status)
+   end if
+end subroutine core_return_map
+
+!> The exact flow from (x, y) to the next abscissa crossing in direction ydir.
+subroutine core_flow_exact(n, xchl, ychl, ydir, tmax, x, y, t, status)
+   use lienard_core, only: wp
+   use cycles, only: flow_exact
+   implicit none
+   integer, intent(in) :: n                    !< number of points
+   real(wp), intent(in) :: xchl(n)             !< abscissae
+   real(wp), intent(in) :: ychl(n)             !< ordinates
+   integer, intent(in) :: ydir                 !< -1 downward crossing, +1 upward
+   real(wp), intent(in) :: tmax                !< time limit
+   real(wp), intent(inout) :: x                !< X
+   real(wp), intent(inout) :: y                !< Y
+   real(wp), intent(inout) :: t                !< T
+   integer, intent(out) :: status              !< 0 or 10
+   call flow_exact(n, xchl, ychl, ydir, tmax, x, y, t, status)
+end subroutine core_flow_exact

@@ -79,6 +79,53 @@ def _run_mlien(args) -> int:
     return 0
 
 
+def _deck_char(args):
+    from .cards import read_deck
+
+    deck = read_deck(args.deck, program=args.program)
+    return deck, deck.xchl[: deck.n], deck.ychl[: deck.n]
+
+
+def _cycles(args) -> int:
+    import json
+
+    from .cycles import find_cycles
+
+    deck, x, y = _deck_char(args)
+    res = find_cycles(x, y, mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
+    if args.json:
+        print(json.dumps(res.to_json(), indent=2))
+    else:
+        print(f"{args.deck}: mode {args.mode}; equilibrium at X = {res.equilibrium:.6g}; the origin is "
+              f"{'stable' if res.origin_stable else 'unstable'}")
+        if not res.cycles:
+            print("no limit cycle")
+        for c in res.to_json()["cycles"]:
+            print(f"  {c['kind']:>11} cycle: amplitude {c['amplitude']:.6g} mm (X from {c['x_left']:.6g} to "
+                  f"{c['x_right']:.6g}), period {c['period']:.6g}")
+    return 0
+
+
+def _sweep(args) -> int:
+    import json
+
+    from .cycles import parse_range, sweep_v0
+
+    deck, x, y = _deck_char(args)
+    v0s = parse_range(args.v0, "--v0")
+    res = sweep_v0(x, y, v0s, mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
+    if args.json:
+        print(json.dumps(res.to_json(), indent=2))
+    else:
+        print(f"{'v0 (mm/s)':>10} {'origin':>9} {'S.L.C. (mm)':>12} {'U.L.C. (mm)':>12}")
+        for v, o, a, b in zip(res.v0, res.origin_stable, res.stable_amplitude, res.unstable_amplitude):
+            fa = "-" if a is None else f"{a:.6g}"
+            fb = "-" if b is None else f"{b:.6g}"
+            print(f"{v:10.4g} {'stable' if o else 'unstable':>9} {fa:>12} {fb:>12}")
+        print("v_oc (S.L.C. and U.L.C. merge): " + ("not in the range" if res.v_oc is None else f"{res.v_oc:.6g} mm/s"))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="lieng",
@@ -97,6 +144,24 @@ def build_parser() -> argparse.ArgumentParser:
                         "bit-identical results (bisect), or no trig calls (fast, last bits differ)")
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
     r.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
+    def deck_args(q):
+        q.add_argument("deck", help="a LIENG-1 (or, with --program mlien, MLIEN) card deck")
+        q.add_argument("--program", choices=PROGRAMS, default="lieng1", help="the deck's layout (default lieng1)")
+        q.add_argument("--mode", choices=("exact", "faithful"), default="exact",
+                       help="exact flow (default) or the listing's POINT step with the deck's DTHETA")
+        q.add_argument("--lookup", choices=("listing", "bisect", "fast"), default="listing",
+                       help="POINT step of the faithful mode")
+        q.add_argument("--json", action="store_true", help="print JSON")
+
+    c = sub.add_parser("cycles", help="stability of the origin and the limit cycles of a deck's characteristic",
+                       description="Limit cycles from the return map on the abscissa, classified by "
+                                   "Poincare's criterion (thesis App. 3).")
+    deck_args(c)
+    w = sub.add_parser("sweep", help="limit cycles against the driving velocity (Fig. 2.27)",
+                       description="The deck's characteristic moved to each driving velocity as TIMDIS moves "
+                                   "it, and its cycles found again; v_oc is where the S.L.C. and U.L.C. merge.")
+    deck_args(w)
+    w.add_argument("--v0", required=True, metavar="START:STOP:N", help="driving velocities (mm/s)")
     return p
 
 
@@ -106,6 +171,10 @@ def main(argv=None) -> int:
     try:
         if args.command == "run":
             return {"lieng1": _run_lieng1, "mlien": _run_mlien}[args.program](args)
+        if args.command == "cycles":
+            return _cycles(args)
+        if args.command == "sweep":
+            return _sweep(args)
         parser.error(f"unknown command {args.command}")  # pragma: no cover
     except LiengInputError as exc:
         print(f"lieng: error: {exc}", file=sys.stderr)

@@ -1,0 +1,256 @@
+!> Return maps on the abscissa for limit cycles (modern, beside the 1971 code).
+!>
+!> The equation of the Lienard plane, dX/dT = Y, dY/dT = -(X - C(Y)), with
+!> C(Y) the characteristic as POINT reads it (linear between points, XCHL(1)
+!> above YCHL(1), XCHL(N) below YCHL(N)).  From (X0, 0) right of the
+!> equilibrium the trajectory turns clockwise: down, across the abscissa on
+!> the left (XLEFT), up, and back across it on the right (XRIGHT = P(X0)).
+!>
+!> Two ways to follow it:
+!>  * exact: on each band YCHL(J+1) <= Y <= YCHL(J) the characteristic is
+!>    X = A + B*Y and the equation is linear, u'' - B u' + u = 0 with
+!>    u = X - A; its closed-form solution is evaluated and the crossings of
+!>    the band limits and of the abscissa are located by bisection to
+!>    machine precision;
+!>  * faithful: the listing's POINT step with the deck's DTHETA, crossings by
+!>    linear interpolation, time as steps*DTHETA (the angle turned about S).
+module cycles
+   use lienard_core, only: wp, point_step, st_ok
+   implicit none
+   private
+   public :: return_map_exact, return_map_faithful, flow_exact
+
+   !> Returned when the trajectory does not come back to the abscissa within
+   !> the time limit (it settles on the equilibrium, e.g. a stable node).
+   integer, parameter, public :: st_no_return = 10
+
+   real(wp), parameter :: hstep = 0.02_wp      ! search step in time (units 1/omega_n)
+
+contains
+
+   !> Band of velocity y: 0 above YCHL(1), J for YCHL(J+1) <= y < YCHL(J), N below YCHL(N).
+   pure integer function band_of(n, ychl, y, dir) result(j)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: ychl(n), y
+      integer, intent(in) :: dir               ! on a limit: +1 take the band above, -1 below
+      integer :: k
+      j = n
+      do k = 1, n
+         if (y > ychl(k) .or. (y == ychl(k) .and. dir > 0)) then
+            j = k - 1
+            return
+         end if
+      end do
+   end function band_of
+
+   pure subroutine band_line(n, xchl, ychl, j, a, b, ylo, yhi)
+      integer, intent(in) :: n, j
+      real(wp), intent(in) :: xchl(n), ychl(n)
+      real(wp), intent(out) :: a, b, ylo, yhi
+      if (j == 0) then
+         a = xchl(1); b = 0.0_wp; ylo = ychl(1); yhi = huge(1.0_wp)
+      else if (j == n) then
+         a = xchl(n); b = 0.0_wp; ylo = -huge(1.0_wp); yhi = ychl(n)
+      else
+         b = (xchl(j + 1) - xchl(j))/(ychl(j + 1) - ychl(j))
+         a = xchl(j) - b*ychl(j)
+         ylo = ychl(j + 1); yhi = ychl(j)
+      end if
+   end subroutine band_line
+
+   !> Closed-form solution of u'' - b u' + u = 0 from (u0, y0) after time t.
+   pure subroutine linear_flow(b, u0, y0, t, u, y)
+      real(wp), intent(in) :: b, u0, y0, t
+      real(wp), intent(out) :: u, y
+      real(wp) :: sg, disc, w, c, s, e
+      sg = 0.5_wp*b
+      disc = sg*sg - 1.0_wp
+      if (disc < 0.0_wp) then
+         w = sqrt(-disc)
+         c = cos(w*t)
+         s = sin(w*t)/w
+      else if (disc > 0.0_wp) then
+         w = sqrt(disc)
+         c = cosh(w*t)
+         s = sinh(w*t)/w
+      else
+         c = 1.0_wp
+         s = t
+      end if
+      e = exp(sg*t)
+      u = e*(u0*c + (y0 - sg*u0)*s)
+      y = e*(y0*c + (sg*y0 - u0)*s)
+   end subroutine linear_flow
+
+   !> Follow the exact flow from (x, y) until Y crosses 0 in direction
+   !> ydir (-1: from above to below, +1: from below to above) or time tmax
+   !> passes.  On return (x, y) is the crossing (y = 0) and t the time.
+   pure subroutine flow_exact(n, xchl, ychl, ydir, tmax, x, y, t, status)
+      integer, intent(in) :: n                 !< number of points of the characteristic
+      real(wp), intent(in) :: xchl(n)          !< abscissae
+      real(wp), intent(in) :: ychl(n)          !< ordinates, strictly decreasing
+      integer, intent(in) :: ydir              !< direction of the abscissa crossing sought
+      real(wp), intent(in) :: tmax             !< time limit
+      real(wp), intent(inout) :: x             !< X, advanced
+      real(wp), intent(inout) :: y             !< Y, advanced
+      real(wp), intent(inout) :: t             !< T, advanced
+      integer, intent(out) :: status           !< st_ok or st_no_return
+      integer :: j, k, ev, it
+      real(wp) :: a, b, ylo, yhi, u0, y0, ta, tb, tm, u, yy, ua, ya, t0, ymove, yref
+      logical :: hit
+
+      status = st_ok
+      ! the direction of motion in Y decides the band on a limit
+      ymove = -(x - xb_of(n, xchl, ychl, y))
+      j = band_of(n, ychl, y, merge(1, -1, ymove > 0.0_wp))
+      t0 = t
+      do while (t - t0 < tmax)
+         call band_line(n, xchl, ychl, j, a, b, ylo, yhi)
+         u0 = x - a
+         y0 = y
+         ta = 0.0_wp
+         yref = y0
+         hit = .false.
+         ev = 0
+         do k = 1, 100000
+            tb = ta + hstep
+            call linear_flow(b, u0, y0, tb, u, yy)
+            call classify(yy, yref, ev)
+            if (ev /= 0) then
+               hit = .true.
+               exit
+            end if
+            ta = tb
+            yref = yy
+            if (t + tb - t0 > tmax) exit
+         end do
+         if (.not. hit) then
+            call linear_flow(b, u0, y0, ta, u, yy)
+            x = u + a; y = yy; t = t + ta
+            status = st_no_return
+            return
+         end if
+         ! bisection for the first event in (ta, tb]
+         do it = 1, 200
+            tm = 0.5_wp*(ta + tb)
+            if (tm <= ta .or. tm >= tb) exit
+            call linear_flow(b, u0, y0, tm, ua, ya)
+            call classify(ya, yref, k)
+            if (k /= 0) then
+               tb = tm
+               ev = k
+            else
+               ta = tm
+            end if
+         end do
+         call linear_flow(b, u0, y0, tb, u, yy)
+         t = t + tb
+         x = u + a
+         select case (ev)
+         case (1)              ! the abscissa
+            y = 0.0_wp
+            return
+         case (2)              ! up into the band above
+            y = yhi
+            j = j - 1
+         case (3)              ! down into the band below
+            y = ylo
+            j = j + 1
+         end select
+      end do
+      status = st_no_return
+
+   contains
+
+      !> The first event between the sample yr (no event) and yv: 1 the
+      !> abscissa in direction ydir, 2 above the band, 3 below it.
+      pure subroutine classify(yv, yr, e)
+         real(wp), intent(in) :: yv, yr
+         integer, intent(out) :: e
+         e = 0
+         if (ydir < 0 .and. yr > 0.0_wp .and. yv <= 0.0_wp) e = 1
+         if (ydir > 0 .and. yr < 0.0_wp .and. yv >= 0.0_wp) e = 1
+         if (e == 0 .and. yv > yhi) e = 2
+         if (e == 0 .and. yv < ylo) e = 3
+      end subroutine classify
+
+   end subroutine flow_exact
+
+   pure function xb_of(n, xchl, ychl, y) result(xb)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: xchl(n), ychl(n), y
+      real(wp) :: xb, a, b, ylo, yhi
+      call band_line(n, xchl, ychl, band_of(n, ychl, y, 1), a, b, ylo, yhi)
+      xb = a + b*y
+   end function xb_of
+
+   !> The exact return map for M starting points X0 on the abscissa.
+   pure subroutine return_map_exact(n, xchl, ychl, m, x0, tmax, xleft, xright, period, status)
+      integer, intent(in) :: n                 !< number of points of the characteristic
+      real(wp), intent(in) :: xchl(n)          !< abscissae
+      real(wp), intent(in) :: ychl(n)          !< ordinates, strictly decreasing
+      integer, intent(in) :: m                 !< number of starting points
+      real(wp), intent(in) :: x0(m)            !< starting abscissae (right of the equilibrium)
+      real(wp), intent(in) :: tmax             !< time limit for each half turn
+      real(wp), intent(out) :: xleft(m)        !< the crossing on the left
+      real(wp), intent(out) :: xright(m)       !< P(X0), the crossing on the right
+      real(wp), intent(out) :: period(m)       !< time of the revolution
+      integer, intent(out) :: status(m)        !< st_ok or st_no_return
+      integer :: i
+      real(wp) :: x, y, t
+      do i = 1, m
+         x = x0(i); y = 0.0_wp; t = 0.0_wp
+         xleft(i) = x; xright(i) = x; period(i) = 0.0_wp
+         call flow_exact(n, xchl, ychl, 1, tmax, x, y, t, status(i))
+         xleft(i) = x
+         if (status(i) /= st_ok) cycle
+         call flow_exact(n, xchl, ychl, -1, tmax, x, y, t, status(i))
+         xright(i) = x
+         period(i) = t
+      end do
+   end subroutine return_map_exact
+
+   !> The faithful return map: the listing's POINT steps with DTHETA.
+   pure subroutine return_map_faithful(n, xchl, ychl, dtheta, lookup, m, x0, maxsteps, &
+                                       xleft, xright, period, status)
+      integer, intent(in) :: n                 !< number of points of the characteristic
+      real(wp), intent(in) :: xchl(n)          !< abscissae
+      real(wp), intent(in) :: ychl(n)          !< ordinates
+      real(wp), intent(in) :: dtheta           !< DTHETA
+      integer, intent(in) :: lookup            !< POINT mode
+      integer, intent(in) :: m                 !< number of starting points
+      real(wp), intent(in) :: x0(m)            !< starting abscissae
+      integer, intent(in) :: maxsteps          !< step limit for each half turn
+      real(wp), intent(out) :: xleft(m)        !< the crossing on the left
+      real(wp), intent(out) :: xright(m)       !< P(X0)
+      real(wp), intent(out) :: period(m)       !< steps*DTHETA of the revolution
+      integer, intent(out) :: status(m)        !< st_ok, st_no_return or a POINT status
+      integer :: i, k, half, st
+      real(wp) :: x, y, t, xn, yn, tn, r, xb, xk, ds, dx, dy, dt, f
+      do i = 1, m
+         x = x0(i); y = 0.0_wp; t = 0.0_wp
+         xleft(i) = x; xright(i) = x; period(i) = 0.0_wp
+         half = 1
+         st = st_no_return
+         do k = 1, 2*maxsteps
+            call point_step(n, xchl, ychl, dtheta, x, y, t, lookup, xn, yn, tn, r, xb, xk, ds, dx, dy, dt, st)
+            if (st /= st_ok) exit
+            st = st_no_return
+            period(i) = period(i) + dtheta
+            if (half == 1 .and. y < 0.0_wp .and. yn >= 0.0_wp) then
+               xleft(i) = x + y/(y - yn)*(xn - x)
+               half = 2
+            else if (half == 2 .and. y > 0.0_wp .and. yn <= 0.0_wp) then
+               f = y/(y - yn)
+               xright(i) = x + f*(xn - x)
+               period(i) = period(i) - (1.0_wp - f)*dtheta
+               st = st_ok
+               exit
+            end if
+            x = xn; y = yn; t = tn
+         end do
+         status(i) = st
+      end do
+   end subroutine return_map_faithful
+
+end module cycles

@@ -1,0 +1,326 @@
+"""Limit cycles and driving-velocity sweeps (thesis ch. 2.3.1.4, 2.4.2, App. 3).
+
+In 1971 the limit cycles came from many LIENG runs read by eye.  Here the
+return map on the abscissa does it: from (X0, 0), right of the equilibrium,
+one revolution brings the trajectory back to (P(X0), 0).  A limit cycle is a
+fixed point of P, and Poincare's criterion (App. 3, A3-11 to A3-15) is the
+sign of D(X0) = P(X0) - X0 on either side of it:
+
+* D > 0 inside and D < 0 outside: stable (trajectories approach it);
+* D < 0 inside and D > 0 outside: unstable;
+* the same sign on both sides: semi-stable (stable from one side only).
+
+The origin (the equilibrium on the abscissa) is stable when D < 0 near it.
+The amplitude is the thesis's: the distance between two successive
+intersections with the abscissa, X_right - X_left.
+
+Two modes:
+
+* ``exact``: the closed-form solution of X'' + phi(X') + X = 0 on each
+  linear piece of the characteristic, crossings located to machine
+  precision (Fortran, ``cycles.f90``);
+* ``faithful``: the listing's POINT step with the deck's DTHETA.  The step
+  is explicit along the tangent, so each step lengthens |SP| by the factor
+  sqrt(1 + DTHETA^2): about pi*DTHETA relative a revolution, which shifts the
+  cycles outwards.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from . import _core
+from .characteristic import centre_of_symmetry, check_characteristic
+from .errors import LiengInputError
+from .lieng1 import lookup_code
+
+__all__ = ["Cycle", "CyclesResult", "return_map", "find_cycles", "move_to_v0", "scale_static_peak",
+           "sweep_v0", "SweepResult"]
+
+MODES = ("exact", "faithful")
+
+
+@dataclass
+class Cycle:
+    """One limit cycle.
+
+    Attributes
+    ----------
+    amplitude : float
+        X_right - X_left, the distance between its two intersections with
+        the abscissa (mm).
+    stable : bool
+        True for a stable cycle (S.L.C.), False for unstable (U.L.C.) and
+        semi-stable ones.
+    kind : str
+        "stable", "unstable" or "semi-stable".
+    period : float
+        Time of one revolution (units of 1/omega_n).
+    x_right, x_left : float
+        Its intersections with the abscissa.
+    """
+
+    amplitude: float
+    stable: bool
+    kind: str
+    period: float
+    x_right: float
+    x_left: float
+
+
+@dataclass
+class CyclesResult:
+    """The origin's stability and the limit cycles of a characteristic."""
+
+    origin_stable: bool
+    equilibrium: float
+    cycles: list = field(default_factory=list)
+    mode: str = "exact"
+    dtheta: float | None = None
+
+    def to_json(self) -> dict:
+        """``{"origin_stable": bool, "cycles": [{"amplitude", "stable", "period", "x_right", ...}]}``."""
+        return {
+            "origin_stable": bool(self.origin_stable),
+            "equilibrium_x": self.equilibrium,
+            "mode": self.mode,
+            "cycles": [asdict(c) for c in sorted(self.cycles, key=lambda c: c.amplitude)],
+        }
+
+    @property
+    def stable_amplitude(self):
+        """Amplitude of the largest stable cycle (the S.L.C.), or None."""
+        a = [c.amplitude for c in self.cycles if c.kind == "stable"]
+        return max(a) if a else None
+
+    @property
+    def unstable_amplitude(self):
+        """Amplitude of the smallest unstable or semi-stable cycle (the U.L.C.), or None."""
+        a = [c.amplitude for c in self.cycles if c.kind != "stable"]
+        return min(a) if a else None
+
+
+def _mode_args(mode: str, dtheta, lookup: str):
+    if mode not in MODES:
+        raise LiengInputError(f"mode = {mode!r}: choose one of {', '.join(MODES)}")
+    if mode == "exact":
+        return 3, 0.0
+    if dtheta is None or not float(dtheta) > 0:
+        raise LiengInputError("the faithful mode needs the deck's DTHETA > 0")
+    return lookup_code(lookup), float(dtheta)
+
+
+def return_map(xchl, ychl, x0, mode: str = "exact", dtheta=None, lookup: str = "listing", tmax: float = 200.0):
+    """The return map on the abscissa.
+
+    Parameters
+    ----------
+    xchl, ychl : array_like
+        The characteristic (YCHL strictly decreasing).
+    x0 : array_like
+        Starting abscissae, right of the equilibrium.
+    mode : {"exact", "faithful"}
+    dtheta : float, optional
+        DTHETA for the faithful mode.
+    tmax : float, optional
+        Time limit of each half revolution (a trajectory that does not come
+        back within it has settled on the equilibrium).
+
+    Returns
+    -------
+    xleft, xright, period : ndarray
+        The two crossings and the time of the revolution; where the
+        trajectory did not come back, ``xright`` is the equilibrium and
+        ``period`` NaN.
+    """
+    x, y = check_characteristic(xchl, ychl)
+    code, dth = _mode_args(mode, dtheta, lookup)
+    x0 = np.atleast_1d(np.asarray(x0, dtype=float))
+    maxsteps = int(min(tmax / dth, 5e7)) if dth > 0 else 1
+    xl, xr, per, st = _core.core_return_map(x, y, code, dth, x0, float(tmax), maxsteps)
+    xs = equilibrium(x, y)
+    bad = st != 0
+    xr = np.where(bad, xs, xr)
+    per = np.where(bad, np.nan, per)
+    return xl, xr, per
+
+
+def equilibrium(xchl, ychl) -> float:
+    """X of the equilibrium: the characteristic at Y = 0."""
+    return float(_core.core_xb(np.asarray(xchl, float), np.asarray(ychl, float), np.zeros(1), 0)[0])
+
+
+def find_cycles(xchl, ychl, mode: str = "exact", dtheta=None, lookup: str = "listing", ngrid: int = 120,
+                rmax: float | None = None) -> CyclesResult:
+    """Stability of the origin and every limit cycle of a characteristic.
+
+    Parameters
+    ----------
+    xchl, ychl : array_like
+        The characteristic.
+    mode : {"exact", "faithful"}
+        The exact flow, or the listing's POINT step with ``dtheta``.
+    dtheta : float, optional
+        DTHETA of the faithful mode.
+    ngrid : int, optional
+        Starting points of the scan for sign changes of D = P - X0
+        (geometric in the distance from the equilibrium).
+    rmax : float, optional
+        Largest distance from the equilibrium scanned (default: twice the
+        extent of the characteristic in X plus its extent in Y).
+
+    Returns
+    -------
+    CyclesResult
+    """
+    x, y = check_characteristic(xchl, ychl)
+    xs = equilibrium(x, y)
+    if rmax is None:
+        rmax = 2.0 * (np.abs(x - xs).max() + np.abs(y).max())
+    r = np.geomspace(rmax * 1e-5, rmax, ngrid)
+
+    def D(rr):
+        xl, xr, _ = return_map(x, y, xs + np.atleast_1d(rr), mode, dtheta, lookup)
+        return xr - (xs + np.atleast_1d(rr))
+
+    d = D(r)
+    scale = rmax
+    cycles = []
+    for k in range(len(r) - 1):
+        if d[k] == 0 or np.sign(d[k]) != np.sign(d[k + 1]):
+            rc = brentq(lambda q: D(q)[0], r[k], r[k + 1], xtol=1e-12 * scale, rtol=1e-15, maxiter=200)
+            kind = "stable" if d[k] > 0 else "unstable"
+            cycles.append(_cycle(x, y, xs + rc, kind, mode, dtheta, lookup))
+    # semi-stable cycles: D touches zero without changing sign
+    ad = np.abs(d) / r
+    for k in range(1, len(r) - 1):
+        if np.sign(d[k - 1]) == np.sign(d[k]) == np.sign(d[k + 1]) and ad[k] < ad[k - 1] and ad[k] < ad[k + 1] \
+                and ad[k] < 0.02:
+            sgn = np.sign(d[k])
+            res = minimize_scalar(lambda q: sgn * D(q)[0] / q, bounds=(r[k - 1], r[k + 1]), method="bounded",
+                                  options={"xatol": 1e-10 * scale})
+            if abs(D(res.x)[0]) < 1e-7 * res.x:
+                cycles.append(_cycle(x, y, xs + res.x, "semi-stable", mode, dtheta, lookup))
+    origin_stable = bool(d[0] < 0)
+    return CyclesResult(origin_stable, xs, sorted(cycles, key=lambda c: c.amplitude), mode,
+                        None if mode == "exact" else float(dtheta))
+
+
+def _cycle(x, y, xr, kind, mode, dtheta, lookup) -> Cycle:
+    xl, xr2, per = return_map(x, y, [xr], mode, dtheta, lookup)
+    return Cycle(float(xr - xl[0]), kind == "stable", kind, float(per[0]), float(xr), float(xl[0]))
+
+
+def move_to_v0(xchl, ychl, v0: float):
+    """The characteristic moved to the driving velocity ``v0`` exactly as
+    TIMDIS moves it: by (-ADIFF, -DIFF), DIFF = VO - v0 with VO = YMDL its
+    centre, so that its centre sits at ``v0`` and the line passes through
+    the origin."""
+    x, y = check_characteristic(xchl, ychl)
+    vo = centre_of_symmetry(x, y).ymdl
+    xs, ys = x.copy(), y.copy()
+    diff, adiff, status = _core.core_timdis(xs, ys, vo, float(v0), 0.0, 0.0)
+    if status != 0:
+        raise LiengInputError(f"v0 = {v0:g}: the characteristic has no point at velocity VO - v0 = {vo - v0:g} "
+                              f"(its range is {y[-1]:g} to {y[0]:g}), so TIMDIS cannot move it there")
+    return xs, ys
+
+
+def scale_static_peak(xchl, ychl, factor: float):
+    """The characteristic with its static peak scaled (Fig. 2.28): the part
+    of the line beyond the kinetic level is scaled about its centre of
+    symmetry by ``factor`` in X, so that dmu0 = mu_s - mu_k0 scales by it."""
+    x, y = check_characteristic(xchl, ychl)
+    c = centre_of_symmetry(x, y)
+    dx = x - c.xmdl
+    # the kinetic level: |X| at the ends of the falling parts (smallest |dx| outside the run)
+    outside = np.ones(x.size, bool)
+    outside[c.lll - 1: c.mmm + 1] = False
+    kin = np.abs(dx[outside]).min() if outside.any() else 0.0
+    over = np.abs(dx) > kin
+    xs = x.copy()
+    xs[over] = c.xmdl + np.sign(dx[over]) * (kin + factor * (np.abs(dx[over]) - kin))
+    return xs, y
+
+
+@dataclass
+class SweepResult:
+    """Cycles against the driving velocity (Fig. 2.27)."""
+
+    v0: list
+    origin_stable: list
+    stable_amplitude: list
+    unstable_amplitude: list
+    v_oc: float | None
+    mode: str
+
+    def to_json(self) -> dict:
+        return {"v0": self.v0, "origin_stable": self.origin_stable, "stable_amplitude": self.stable_amplitude,
+                "unstable_amplitude": self.unstable_amplitude, "v_oc": self.v_oc, "mode": self.mode}
+
+
+def _progress(i: int, n: int, label: str, enabled: bool) -> None:
+    if not enabled:
+        return
+    w = 30
+    done = int(w * i / n)
+    sys.stderr.write(f"\r{label} [{'#' * done}{'.' * (w - done)}] {i}/{n}")
+    if i == n:
+        sys.stderr.write("\n")
+    sys.stderr.flush()
+
+
+def sweep_v0(xchl, ychl, v0s, mode: str = "exact", dtheta=None, lookup: str = "listing",
+             progress: bool | None = None, find_voc: bool = True, **kw) -> SweepResult:
+    """The cycles for each driving velocity in ``v0s`` (the characteristic
+    moved as TIMDIS moves it), and v_oc, where the S.L.C. and U.L.C. merge.
+
+    ``progress``: a progress bar on standard error; by default only when it
+    is a terminal.
+    """
+    if progress is None:
+        progress = sys.stderr.isatty()
+    v0s = [float(v) for v in v0s]
+    res = []
+    for i, v0 in enumerate(v0s):
+        xm, ym = move_to_v0(xchl, ychl, v0)
+        res.append(find_cycles(xm, ym, mode, dtheta, lookup, **kw))
+        _progress(i + 1, len(v0s), "sweep v0", progress)
+    v_oc = None
+    if find_voc:
+        both = [r.stable_amplitude is not None and r.unstable_amplitude is not None for r in res]
+        none = [r.stable_amplitude is None and r.origin_stable for r in res]
+        for k in range(len(v0s) - 1):
+            if both[k] and none[k + 1]:
+                lo, hi = v0s[k], v0s[k + 1]
+                for _ in range(30):
+                    mid = 0.5 * (lo + hi)
+                    xm, ym = move_to_v0(xchl, ychl, mid)
+                    rm = find_cycles(xm, ym, mode, dtheta, lookup, **kw)
+                    if rm.stable_amplitude is not None:
+                        lo = mid
+                    else:
+                        hi = mid
+                    if hi - lo < 1e-6 * max(1.0, abs(hi)):
+                        break
+                v_oc = 0.5 * (lo + hi)
+                break
+    return SweepResult(v0s, [r.origin_stable for r in res], [r.stable_amplitude for r in res],
+                       [r.unstable_amplitude for r in res], v_oc, mode)
+
+
+def parse_range(text: str, name: str = "--v0"):
+    """'START:STOP:N' -> N values from START to STOP."""
+    try:
+        a, b, n = text.split(":")
+        a, b, n = float(a), float(b), int(n)
+    except ValueError:
+        raise LiengInputError(f"{name} {text!r}: expected START:STOP:N, e.g. 1:30:50") from None
+    if n < 1 or n > 100000 or not (math.isfinite(a) and math.isfinite(b)):
+        raise LiengInputError(f"{name} {text!r}: N must be 1..100000 and START, STOP finite")
+    return list(np.linspace(a, b, n))
