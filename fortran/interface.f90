@@ -237,3 +237,92 @@ subroutine core_flow_exact(n, xchl, ychl, ydir, tmax, x, y, t, status)
    integer, intent(out) :: status              !< 0 or 10
    call flow_exact(n, xchl, ychl, ydir, tmax, x, y, t, status)
 end subroutine core_flow_exact
+
+!> TRC: readings to time (s) and corrected displacements (mm).
+subroutine core_trc_calibrate(nn, nt, nh, nhn, ho, hon, vel, sensf, sensn, an1, an2, t, x, xn)
+   use lienard_core, only: wp
+   use trc, only: trc_calibrate
+   implicit none
+   integer, intent(in) :: nn                   !< number of points
+   integer, intent(in) :: nt(nn)               !< NT readings
+   integer, intent(in) :: nh(nn)               !< NH readings
+   integer, intent(in) :: nhn(nn)              !< NHN readings
+   real(wp), intent(in) :: ho                  !< HO
+   real(wp), intent(in) :: hon                 !< HON
+   real(wp), intent(in) :: vel                 !< VEL, paper speed (mm/s)
+   real(wp), intent(in) :: sensf               !< SENSF
+   real(wp), intent(in) :: sensn               !< SENSN
+   real(wp), intent(in) :: an1                 !< AN1
+   real(wp), intent(in) :: an2                 !< AN2
+   real(wp), intent(out) :: t(nn)              !< T (s)
+   real(wp), intent(out) :: x(nn)              !< X (mm)
+   real(wp), intent(out) :: xn(nn)             !< XN (mm)
+   call trc_calibrate(nn, nt, nh, nhn, ho, hon, vel, sensf, sensn, an1, an2, t, x, xn)
+end subroutine core_trc_calibrate
+
+!> TRC: velocities, BELFIT, the reverse Lienard construction, EL and ELN.
+subroutine core_trc_reduce(nn, t, x, xn, omnh, omnv, xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, &
+                           xlnr, xnlnr, amt, amtn, el, eln, has_eln, status, where)
+   use lienard_core, only: wp
+   use trc, only: trc_reduce
+   implicit none
+   integer, intent(in) :: nn                   !< number of points
+   real(wp), intent(in) :: t(nn)               !< T (s)
+   real(wp), intent(in) :: x(nn)               !< X (mm)
+   real(wp), intent(in) :: xn(nn)              !< XN (mm)
+   real(wp), intent(in) :: omnh                !< OMNH (rad/s)
+   real(wp), intent(in) :: omnv                !< OMNV (rad/s)
+   real(wp), intent(out) :: xs(nn)             !< X after BELFIT (unchanged values)
+   real(wp), intent(out) :: v(nn)              !< V (mm/s)
+   real(wp), intent(out) :: vn(nn)             !< VN (mm/s)
+   real(wp), intent(out) :: vln(nn)            !< VLN, smoothed
+   real(wp), intent(out) :: vnln(nn)           !< VNLN
+   real(wp), intent(out) :: am(nn)             !< AM
+   real(wp), intent(out) :: xx(nn)             !< XX
+   real(wp), intent(out) :: yy(nn)             !< YY
+   real(wp), intent(out) :: xxn(nn)            !< XXN
+   real(wp), intent(out) :: yyn(nn)            !< YYN
+   real(wp), intent(out) :: xlnr(nn)           !< XLNR
+   real(wp), intent(out) :: xnlnr(nn)          !< XNLNR
+   real(wp), intent(out) :: amt(nn)            !< AMT
+   real(wp), intent(out) :: amtn(nn)           !< AMTN
+   real(wp), intent(out) :: el                 !< EL
+   real(wp), intent(out) :: eln                !< ELN
+   integer, intent(out) :: has_eln             !< 1 when ELN was found
+   integer, intent(out) :: status              !< 0 or a trc error code
+   integer, intent(out) :: where               !< point of the error
+   xs = x
+   call trc_reduce(nn, t, xs, xn, omnh, omnv, v, vn, vln, vnln, am, xx, yy, xxn, yyn, &
+                   xlnr, xnlnr, amt, amtn, el, eln, has_eln, status, where)
+end subroutine core_trc_reduce
+
+!> BELFIT: group-fitting smoothing of Y as a function of X.
+subroutine core_belfit(n, x, y, ys, status, where)
+   use lienard_core, only: wp
+   use trc, only: belfit
+   implicit none
+   integer, intent(in) :: n                    !< number of points
+   real(wp), intent(in) :: x(n)                !< X
+   real(wp), intent(in) :: y(n)                !< Y
+   real(wp), intent(out) :: ys(n)              !< Y smoothed
+   integer, intent(out) :: status              !< 0 or a trc error code
+   integer, intent(out) :: where               !< first point of a degenerate group
+   real(wp) :: xxx(n), yw(n)
+   yw = y
+   call belfit(n, x, yw, xxx, ys, status, where)
+end subroutine core_belfit
+
+!> LSQFIT: least-squares polynomial of degree kdeg by orthogonal polynomials.
+subroutine core_lsqfit(number, kdeg, x, y, coef)
+   use lienard_core, only: wp
+   use trc, only: lsqfit
+   implicit none
+   integer, intent(in) :: number               !< number of points
+   integer, intent(in) :: kdeg                 !< degree
+   real(wp), intent(in) :: x(number)           !< X
+   real(wp), intent(in) :: y(number)           !< Y
+   real(wp), intent(out) :: coef(kdeg + 1)     !< coefficients of X**0..X**kdeg
+   real(wp) :: fitpol(kdeg + 2)
+   call lsqfit(number, kdeg, x, y, fitpol)
+   coef = fitpol(2:kdeg + 2)
+end subroutine core_lsqfit

@@ -15,7 +15,7 @@ import numpy as np
 
 from .cards import write_record
 
-__all__ = ["FORMATS_LIENG1", "FORMATS_MLIEN", "lieng1_listing", "mlien_listing"]
+__all__ = ["FORMATS_LIENG1", "FORMATS_MLIEN", "FORMATS_TRC", "lieng1_listing", "mlien_listing", "trc_listing"]
 
 
 def _h(text: str, width: int) -> str:
@@ -148,4 +148,68 @@ def mlien_listing(deck, result) -> list[str]:
         i = ll - 1
         _w(out, 1010, result.r[i], result.x[i], result.y[i], result.t[i], result.xmdl[i], result.ymdl[i], ll,
            formats=FORMATS_MLIEN)
+    return [ln.rstrip() for ln in out]
+
+
+def _row(cells: list[tuple[str, int]], width: int = 90) -> str:
+    """A 90H line of the TRC table head: each label right-aligned to end at
+    the column where its field of FORMAT 80 ends; '*' at columns 11 and 82."""
+    line = [" "] * width
+    line[10] = "*"
+    line[81] = "*"
+    for text, end in cells:
+        line[end - len(text) : end] = list(text)
+    return "".join(line)
+
+
+def _text(text: str, width: int = 90) -> str:
+    line = list(f"{'':10}*  {text}".ljust(width))
+    line[81] = "*"
+    return "".join(line)
+
+
+_STARS = " " * 10 + "*" * 72
+#: Column ends of FORMAT 80's fields: I6 then seven F8 (11H takes columns 1-11).
+_ENDS = [17, 25, 33, 41, 49, 57, 65, 73]
+
+#: TRC (App. 7).  The texts of the 90H head lines are the listing's; their
+#: spacing is lost in the OCR and is laid out on FORMAT 80's columns
+#: (RESTORATION.md R20).
+FORMATS_TRC = {
+    70: "(" + ",".join([_h("1" + _STARS[1:], 90), _h(_text("STICK-SLIP CYCLE ANALYSIS"), 90),
+                        _h(_STARS, 90), _h(_text("DATA"), 90)]).replace(",", "/", 3) + ")",
+    110: "(" + "/".join(_h(_text(t), 90) for t in (
+        "SURFACES            STEEL ST 37.11 ON STEEL ST 37.11",
+        "SURFACE ROUGHNESS   20 MICROIN CLA FOR BOTH SPECIMENS",
+        "SURFACE HARDNESS    40-45 RC FOR BOTH SPECIMENS",
+        "GEOMETRY            1/2 IN BALL ON FLAT DISC",
+        "LUBRICANT           NONE")) + ")",
+    120: "(" + "/".join([
+        _h(_text("AMBIENT TEMPERATURE 21 DEG CENT."), 90),
+        _h(_text("RELATIVE HUMIDITY   57 PER CENT"), 90),
+        _h(_STARS, 90),
+        _h(_row(list(zip(["N", "T", "X", "V", "XN", "VN", "AM", "AMT"], _ENDS))), 90),
+        _h(_row(list(zip(["SEC", "MM", "MM/SEC", "MM", "MM/SEC"], _ENDS[1:6]))), 90),
+    ]) + ")",
+    111: "(" + _h(_STARS, 90) + ")",
+    80: "(11H          *,I6,2F8.4,F8.3,F8.4,F8.3,2F8.4,9H        *)",
+    100: "(" + _h(_STARS, 90) + "/)",
+    635: "(9F12.5)",
+}
+
+
+def trc_listing(result) -> list[str]:
+    """The TRC line-printer output: the head (FORMATs 70, 110, 120, 111),
+    the table N, T, X, V, XN, VN, AM, AMT (FORMAT 80), FORMAT 100, and the
+    table XX, YY, XLNR, XNLNR, VLN, VNLN, YYN, XXN, AMTN (FORMAT 635)."""
+    out: list[str] = []
+    for no in (70, 110, 120, 111):
+        _w(out, no, formats=FORMATS_TRC)
+    r = result
+    for i in range(r.nn):
+        _w(out, 80, i + 1, r.t[i], r.x[i], r.v[i], r.xn[i], r.vn[i], r.am[i], r.amt[i], formats=FORMATS_TRC)
+    _w(out, 100, formats=FORMATS_TRC)
+    for i in range(r.nn):
+        _w(out, 635, r.xx[i], r.yy[i], r.xlnr[i], r.xnlnr[i], r.vln[i], r.vnln[i], r.yyn[i], r.xxn[i], r.amtn[i],
+           formats=FORMATS_TRC)
     return [ln.rstrip() for ln in out]

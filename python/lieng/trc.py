@@ -1,0 +1,451 @@
+"""TRC (thesis App. 7): recorder readings to experimental phase-plane
+trajectories and, by the reverse Lienard construction, the friction
+characteristic.
+
+The deck::
+
+    card 1        HO, HON, VEL              (3F20.5)   reference levels (microstrain), paper speed (mm/s)
+    card 2        OMNH, OMNV                (2F20.5)   natural frequencies, horizontal and normal (rad/s)
+    card 3        SENSF, SENSN, AN1, AN2    (4F10.3)   sensitivities; cross-interference (fractions)
+    card 4        NN                        (I5)       number of points of the trace (10..200)
+    cards 5-      NT, NH, NHN  six a card   (18I4)     as loop 20 reads them: cards for J = 1, 7, ...,
+                                                       up to NN+4, i.e. at least NN+4 triplets
+
+NT is the paper distance from the previous point, NH and NHN the readings
+of the horizontal (friction) and normal traces, all in hundredths of a
+recorder millimetre.  The run (:func:`trc`):
+
+1. calibration: X = HO/500 + NH/100*SENSF/500, XN = HON/568.2 +
+   NHN/100*SENSN/568.2 (mm), the interference correction (A5-3, A5-4),
+   T(I) = T(I-1) + NT(I)/100/VEL (s);
+2. velocities (backward differences), VLN = V/OMNH and VNLN = VN/OMNV (the
+   Lienard plane's velocity coordinate, mm), AM = X/XN;
+3. BELFIT: VLN smoothed as a function of X by "group fitting" ({D, n, N} =
+   {2, 5, 8}, ch. 3.3.2);
+4. the reverse Lienard construction (ch. 3.3.3): at each point the normals
+   of the two chords meet the abscissa at XK and XL; their mean weighted by
+   the chord lengths is the characteristic XX at velocity YY = VLN (and XXN
+   at YYN = VNLN for the normal mode, from the unsmoothed trace);
+5. the origin: the first point where VLN goes from + to - and stays - for
+   four samples; EL is where the characteristic crosses the abscissa there
+   (ELN likewise, - to +, for the normal mode); every x is shifted by EL
+   (ELN), and AMT = XX*OMNH**2/9810 is the characteristic as a coefficient
+   of friction (relative to its value at zero velocity).
+
+A CSV ``t,x[,xn]`` (s, mm, mm) enters at step 2: its displacements are taken
+as calibrated and corrected.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from . import _core
+from .cards import Card, card_location, read_cards, write_cards
+from .errors import LiengInputError
+
+__all__ = ["Deck", "TrcResult", "trc", "calibrate", "belfit", "lsqfit", "read_csv", "CSV_COLUMNS",
+           "NMIN", "NMAX_DECK"]
+
+#: BELFIT needs 2M-1 = 9 points; the issue and the origin search want 10.
+NMIN = 10
+#: "TRACE DESCRIPTION WITH 200 POINTS AT MAXIMUM" (the listing's comment).
+NMAX_DECK = 200
+
+HEAD: list[Card] = [
+    Card("(3F20.5)", ("HO", "HON", "VEL")),
+    Card("(2F20.5)", ("OMNH", "OMNV")),
+    Card("(4F10.3)", ("SENSF", "SENSN", "AN1", "AN2")),
+    Card("(I5)", ("NN",)),
+]
+
+#: The columns of ``trc.csv`` (values after the EL / ELN shift).
+CSV_COLUMNS = ("i", "t", "x", "v", "xn", "vn", "am", "xx", "yy", "amt", "xxn", "yyn", "amtn")
+
+
+def data_cards(nn: int) -> list[Card]:
+    """The 18I4 cards loop 20 reads for NN points: J = 1, 7, ... <= NN+4."""
+    cards = []
+    for j in range(1, nn + 4 + 1, 6):
+        names = []
+        for k in range(j, j + 6):
+            names += [f"NT({k})", f"NH({k})", f"NHN({k})"]
+        cards.append(Card("(18I4)", tuple(names)))
+    return cards
+
+
+def _err_status(status: int, where: int, what: str) -> LiengInputError:
+    if status == 1:
+        return LiengInputError(f"{what}: fewer than {NMIN} points (BELFIT fits groups of 5 points)")
+    if status == 2:
+        return LiengInputError(f"{what}: no velocity sign change: VLN never goes from + to - and stays - for "
+                               f"four samples, so the origin EL is undefined (the listing leaves it so)")
+    if status == 3:
+        return LiengInputError(f"{what}: points {where}-{where + 4} have fewer than 3 distinct displacements: "
+                               f"BELFIT's quadratic least-squares fit over them is singular")
+    if status == 4:
+        return LiengInputError(f"{what}: points {where - 1} and {where} have the same time: the velocity "
+                               f"V({where}) divides by zero")
+    return LiengInputError(f"{what}: the TRC core stopped with status {status} at point {where}")
+
+
+@dataclass
+class Deck:
+    """A TRC deck's values as the listing reads them."""
+
+    ho: float
+    hon: float
+    vel: float
+    omnh: float
+    omnv: float
+    sensf: float
+    sensn: float
+    an1: float
+    an2: float
+    nn: int
+    nt: np.ndarray
+    nh: np.ndarray
+    nhn: np.ndarray
+    source: str = "deck"
+
+    program = "trc"
+
+    @property
+    def layout(self) -> list[Card]:
+        return HEAD + data_cards(self.nn)
+
+    def locate(self, name: str) -> str:
+        return f"{self.source}: {card_location(self.layout, name)}"
+
+    @classmethod
+    def from_lines(cls, lines: Sequence[str], source: str = "deck") -> "Deck":
+        """Read the deck; raises LiengInputError naming card and columns."""
+        head = read_cards(lines[:4] if len(lines) >= 4 else lines, HEAD, source)
+        nn = head["NN"]
+        loc = f"{source}: {card_location(HEAD, 'NN')}"
+        if not NMIN <= nn <= NMAX_DECK:
+            hint = " (blanks after the digits count as zeros: right-justify NN in columns 1-5)" if nn > NMAX_DECK else ""
+            raise LiengInputError(f"{loc}: NN = {nn} is out of range: a trace needs {NMIN} <= NN <= {NMAX_DECK} "
+                                  f"points{hint}")
+        v = read_cards(lines, HEAD + data_cards(nn), source)
+        nt = np.array([v[f"NT({k})"] for k in range(1, nn + 1)], dtype=np.int32)
+        nh = np.array([v[f"NH({k})"] for k in range(1, nn + 1)], dtype=np.int32)
+        nhn = np.array([v[f"NHN({k})"] for k in range(1, nn + 1)], dtype=np.int32)
+        deck = cls(v["HO"], v["HON"], v["VEL"], v["OMNH"], v["OMNV"], v["SENSF"], v["SENSN"], v["AN1"],
+                   v["AN2"], nn, nt, nh, nhn, source)
+        deck.check()
+        return deck
+
+    def check(self) -> None:
+        """The checks the listing lacked."""
+        for name in ("HO", "HON", "VEL", "OMNH", "OMNV", "SENSF", "SENSN", "AN1", "AN2"):
+            if not math.isfinite(getattr(self, name.lower())):
+                raise LiengInputError(f"{self.locate(name)}: {name} is not a finite number")
+        if self.vel == 0:
+            raise LiengInputError(f"{self.locate('VEL')}: VEL = 0: the paper speed divides every time "
+                                  f"T(I) = (T(I-1)*VEL + TC(I))/VEL")
+        for name in ("OMNH", "OMNV"):
+            if getattr(self, name.lower()) == 0:
+                raise LiengInputError(f"{self.locate(name)}: {name} = 0: the Lienard-plane velocity V/{name} "
+                                      f"divides by the natural frequency")
+        if self.an1 * self.an2 == 1:
+            raise LiengInputError(f"{self.locate('AN1')}: AN1*AN2 = 1: the interference correction divides by "
+                                  f"1 - AN1*AN2 = 0")
+        for k in range(2, self.nn + 1):
+            if self.nt[k - 1] == 0:
+                raise LiengInputError(f"{self.locate(f'NT({k})')}: NT({k}) = 0: points {k - 1} and {k} have the "
+                                      f"same time, the velocity divides by zero")
+
+    def values(self) -> dict:
+        v = {"HO": self.ho, "HON": self.hon, "VEL": self.vel, "OMNH": self.omnh, "OMNV": self.omnv,
+             "SENSF": self.sensf, "SENSN": self.sensn, "AN1": self.an1, "AN2": self.an2, "NN": self.nn}
+        for card in data_cards(self.nn):
+            for name in card.names:
+                v[name] = 0
+        for k in range(self.nn):
+            v[f"NT({k + 1})"] = int(self.nt[k])
+            v[f"NH({k + 1})"] = int(self.nh[k])
+            v[f"NHN({k + 1})"] = int(self.nhn[k])
+        return v
+
+    def to_lines(self) -> list[str]:
+        """The deck's cards (each reads back to the same value)."""
+        return write_cards(self.values(), self.layout)
+
+    def calibrated(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """T (s), X, XN (mm) after calibration and interference correction."""
+        return calibrate(self.nt, self.nh, self.nhn, ho=self.ho, hon=self.hon, vel=self.vel, sensf=self.sensf,
+                         sensn=self.sensn, an1=self.an1, an2=self.an2)
+
+    def run(self) -> "TrcResult":
+        """Run the deck as the 1971 program did."""
+        t, x, xn = self.calibrated()
+        res = trc(t, x, xn, omnh=self.omnh, omnv=self.omnv, _where=self.source)
+        res.readings = (self.nt.copy(), self.nh.copy(), self.nhn.copy())
+        return res
+
+
+def calibrate(nt, nh, nhn, *, ho, hon, vel, sensf, sensn, an1=0.0, an2=0.0):
+    """Readings to time and corrected displacements (the listing's loops 40-50).
+
+    Parameters
+    ----------
+    nt, nh, nhn : array_like of int
+        Paper distance from the previous point and the horizontal and normal
+        trace readings, in hundredths of a recorder millimetre.
+    ho, hon : float
+        Reference levels of the two bridges (microstrain).
+    vel : float
+        Paper speed (mm/s), not zero.
+    sensf, sensn : float
+        Sensitivities of the friction and normal traces.
+    an1, an2 : float
+        Cross-interference as fractions: AN1 of the friction on the normal
+        reading, AN2 of the normal on the friction reading (App. 5, A5-3/A5-4).
+
+    Returns
+    -------
+    t, x, xn : ndarray
+        Time (s) from T(1) = 0, and the two displacements (mm).
+    """
+    nt = np.ascontiguousarray(nt, dtype=np.int32)
+    nh = np.ascontiguousarray(nh, dtype=np.int32)
+    nhn = np.ascontiguousarray(nhn, dtype=np.int32)
+    if not (nt.shape == nh.shape == nhn.shape and nt.ndim == 1 and nt.size >= 1):
+        raise LiengInputError("nt, nh, nhn must be 1-D arrays of the same length")
+    if vel == 0 or an1 * an2 == 1:
+        raise LiengInputError("vel must not be 0 and an1*an2 must not be 1")
+    return _core.core_trc_calibrate(nt, nh, nhn, ho, hon, vel, sensf, sensn, an1, an2)
+
+
+@dataclass
+class TrcResult:
+    """What TRC computes, point by point (1-based point i = index + 1).
+
+    Attributes
+    ----------
+    t : ndarray
+        Time (s).
+    x, xn : ndarray
+        Horizontal and normal displacement (mm), before the shift.
+    v, vn : ndarray
+        Velocities (mm/s), backward differences; v[0] = vn[0] = 0.
+    vln, vnln : ndarray
+        Lienard-plane velocities V/OMNH (smoothed by BELFIT) and VN/OMNV (mm).
+    am : ndarray
+        Apparent coefficient of friction X/XN (am[0] = 0 as in the listing).
+    xx, yy : ndarray
+        The horizontal characteristic: XX (mm, shifted by EL) at velocity
+        YY = VLN.  Points 1 and NN are not constructed (the listing's 0 - EL).
+    amt : ndarray
+        XX*OMNH**2/9810: the characteristic as a coefficient of friction
+        relative to its value at zero velocity.
+    xxn, yyn, amtn : ndarray
+        The same for the normal mode (NaN when the trace has no normal mode).
+    xlnr, xnlnr : ndarray
+        X - EL and XN - ELN: the trajectories in the shifted Lienard plane.
+    el, eln : float
+        The origins found (ELN is NaN when the normal velocity has no - to +
+        sign change).
+    omnh, omnv : float
+        Natural frequencies (rad/s).
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    xn: np.ndarray
+    v: np.ndarray
+    vn: np.ndarray
+    vln: np.ndarray
+    vnln: np.ndarray
+    am: np.ndarray
+    xx: np.ndarray
+    yy: np.ndarray
+    amt: np.ndarray
+    xxn: np.ndarray
+    yyn: np.ndarray
+    amtn: np.ndarray
+    xlnr: np.ndarray
+    xnlnr: np.ndarray
+    el: float
+    eln: float
+    omnh: float
+    omnv: float
+    has_normal: bool = True
+    readings: tuple | None = None
+
+    @property
+    def nn(self) -> int:
+        return self.t.size
+
+    def columns(self) -> dict:
+        """The ``trc.csv`` columns, in :data:`CSV_COLUMNS` order."""
+        cols = {"i": np.arange(1, self.nn + 1)}
+        for name in CSV_COLUMNS[1:]:
+            cols[name] = getattr(self, name)
+        return cols
+
+
+def _check_trace(t, x, xn, where):
+    for name, a in (("t", t), ("x", x), ("xn", xn)):
+        if a is None:
+            continue
+        if a.ndim != 1:
+            raise LiengInputError(f"{where}: {name} must be one-dimensional")
+        bad = np.flatnonzero(~np.isfinite(a))
+        if bad.size:
+            raise LiengInputError(f"{where}: column {name}, point {bad[0] + 1}: {a[bad[0]]} is not a finite number")
+    if x.size != t.size or (xn is not None and xn.size != t.size):
+        raise LiengInputError(f"{where}: t, x and xn must have the same length")
+    if t.size < NMIN:
+        raise LiengInputError(f"{where}: {t.size} points: TRC needs at least {NMIN} (BELFIT fits groups of 5)")
+    dt = np.diff(t)
+    bad = np.flatnonzero(dt <= 0)
+    if bad.size:
+        k = bad[0] + 2
+        what = "the same time as" if dt[bad[0]] == 0 else "an earlier time than"
+        raise LiengInputError(f"{where}: column t, point {k}: t = {t[k - 1]:g} is {what} point {k - 1}: times "
+                              f"must increase")
+
+
+def trc(t, x, xn=None, *, omnh, omnv=None, _where: str = "trc") -> TrcResult:
+    """The TRC reduction of a calibrated trace.
+
+    Parameters
+    ----------
+    t : array_like
+        Time (s), strictly increasing; at least 10 points.
+    x : array_like
+        Horizontal (friction) displacement of the dynamometer (mm).
+    xn : array_like, optional
+        Normal displacement (mm).  Without it the normal-mode results are NaN.
+    omnh : float
+        Natural frequency of the horizontal mode (rad/s).
+    omnv : float, optional
+        Natural frequency of the normal mode (rad/s); required with ``xn``.
+
+    Returns
+    -------
+    TrcResult
+
+    Raises
+    ------
+    LiengInputError
+        Too few points, times not increasing, a non-finite value, a zero
+        frequency, no + to - velocity sign change (EL undefined), or a
+        smoothing group with fewer than 3 distinct displacements.
+    """
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    has_normal = xn is not None
+    xn_arr = np.ascontiguousarray(xn, dtype=float) if has_normal else None
+    _check_trace(t, x, xn_arr, _where)
+    if not (math.isfinite(omnh) and omnh != 0):
+        raise LiengInputError(f"{_where}: OMNH = {omnh}: the natural frequency must be a finite non-zero number")
+    if has_normal:
+        if omnv is None or not (math.isfinite(omnv) and omnv != 0):
+            raise LiengInputError(f"{_where}: OMNV = {omnv}: the normal mode needs a finite non-zero natural "
+                                  f"frequency")
+    else:
+        xn_arr = np.ones_like(x)
+        omnv = 1.0
+    with np.errstate(all="ignore"):
+        (xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, xlnr, xnlnr, amt, amtn, el, eln, has_eln, status,
+         where) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
+    if status != 0:
+        raise _err_status(int(status), int(where), _where)
+    if not has_normal:
+        nan = np.full_like(x, np.nan)
+        xn_out, vn, vnln, am, xxn, yyn, amtn, xnlnr = (nan.copy() for _ in range(8))
+        eln = math.nan
+    else:
+        xn_out = xn_arr
+        if not has_eln:
+            import warnings
+
+            warnings.warn(f"{_where}: the normal velocity has no - to + sign change: ELN is undefined, the "
+                          f"normal-mode characteristic is not shifted", stacklevel=2)
+            eln = math.nan
+    return TrcResult(t=t, x=xs, xn=xn_out, v=v, vn=vn, vln=vln, vnln=vnln, am=am, xx=xx, yy=yy, amt=amt,
+                     xxn=xxn, yyn=yyn, amtn=amtn, xlnr=xlnr, xnlnr=xnlnr, el=float(el), eln=float(eln),
+                     omnh=float(omnh), omnv=float(omnv) if has_normal else math.nan, has_normal=has_normal)
+
+
+def belfit(x, y):
+    """BELFIT's group-fitting smoothing of ``y`` as a function of ``x``.
+
+    A quadratic in ``x`` is fitted by least squares to each run of 5
+    consecutive points; each point's value is the mean of its fitted values
+    over the runs that hold it; 8 passes (ch. 3.3.2, {D, n, N} = {2, 5, 8}).
+
+    Returns
+    -------
+    ndarray
+        The smoothed ``y`` (``x`` is not changed).
+    """
+    x = np.ascontiguousarray(x, dtype=float)
+    y = np.ascontiguousarray(y, dtype=float)
+    if x.shape != y.shape or x.ndim != 1:
+        raise LiengInputError("belfit: x and y must be 1-D arrays of the same length")
+    if x.size < 9:
+        raise LiengInputError(f"belfit: {x.size} points: BELFIT needs at least 9")
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
+        raise LiengInputError("belfit: x and y must be finite")
+    ys, status, where = _core.core_belfit(x, y)
+    if status != 0:
+        raise _err_status(int(status), int(where), "belfit")
+    return ys
+
+
+def lsqfit(x, y, deg: int = 2):
+    """LSQFIT / POLYNL / POLFIT: least-squares polynomial by orthogonal
+    polynomials.  Returns the coefficients of x**0 .. x**deg."""
+    x = np.ascontiguousarray(x, dtype=float)
+    y = np.ascontiguousarray(y, dtype=float)
+    if x.shape != y.shape or x.ndim != 1 or not 0 <= deg < x.size or len(set(x.tolist())) <= deg:
+        raise LiengInputError("lsqfit: need 1-D x, y of equal length with more than deg distinct x values")
+    return _core.core_lsqfit(int(deg), x, y)
+
+
+def read_csv(path):
+    """Read a ``t,x[,xn]`` CSV (s, mm, mm).  Returns (t, x, xn or None).
+
+    Raises LiengInputError naming the row and column of any bad value.
+    """
+    p = Path(path)
+    try:
+        fh = open(p, newline="", encoding="utf-8")
+    except FileNotFoundError:
+        raise LiengInputError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise LiengInputError(f"{path}: is a directory") from None
+    with fh:
+        rows = list(csv.reader(fh))
+    if not rows:
+        raise LiengInputError(f"{path}: empty file: expected a header t,x[,xn]")
+    header = [h.strip() for h in rows[0]]
+    for need in ("t", "x"):
+        if need not in header:
+            raise LiengInputError(f"{path}: no column {need!r} in the header (expected t,x[,xn]: s, mm, mm)")
+    cols = {name: header.index(name) for name in ("t", "x", "xn") if name in header}
+    data = {name: [] for name in cols}
+    for r, row in enumerate(rows[1:], start=2):
+        if not row or all(not c.strip() for c in row):
+            continue
+        for name, c in cols.items():
+            try:
+                val = float(row[c])
+            except (IndexError, ValueError):
+                cell = row[c] if c < len(row) else ""
+                raise LiengInputError(f"{path}: line {r}, column {name}: {cell.strip()!r} is not a number") from None
+            if not math.isfinite(val):
+                raise LiengInputError(f"{path}: line {r}, column {name}: {val} is not a finite number")
+            data[name].append(val)
+    arrs = {k: np.array(v) for k, v in data.items()}
+    return arrs["t"], arrs["x"], arrs.get("xn")
