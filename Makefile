@@ -38,6 +38,7 @@ demo: install
 	rm -rf out
 	$(LIENG) run lieng1 cards/lieng1_demo.dat -o out/lieng1
 	$(LIENG) run mlien cards/mlien_a9_7.dat -o out/mlien
+	$(LIENG) run trc cards/trc_demo.dat -o out/trc
 	@echo "demo written to out/"
 
 test: install
@@ -45,6 +46,7 @@ test: install
 
 bench: install
 	$(VPY) tests/benchmarks/bench_point.py
+	$(VPY) tests/benchmarks/bench_trc.py
 
 clean:
 	rm -rf build out .pytest_cache

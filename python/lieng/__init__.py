@@ -4,6 +4,7 @@ The 1971 programs (thesis, Imperial College London):
 
 * :func:`lieng1` -- LIENG-1 (App. 4), phase portraits by Lienard's construction.
 * :func:`mlien` -- MLIEN / LIENG-2 (App. 6), driving velocity v0(t) and triggering.
+* :func:`trc` -- TRC (App. 7), recorder readings to trajectories and the characteristic.
 
 Card decks: :func:`read_deck`, :func:`write_deck`.  Bad input raises
 :class:`LiengInputError` with a one-line message naming the card and columns.
@@ -15,6 +16,7 @@ from .errors import LiengInputError
 from .lieng1 import Lieng1Result, lieng1
 from . import mlien as mlien_module
 from .mlien import MlienResult, mlien
+from .trc import TrcResult, trc
 
 __version__ = "0.1.0"
 
@@ -22,9 +24,11 @@ __all__ = [
     "LiengInputError",
     "Lieng1Result",
     "MlienResult",
+    "TrcResult",
     "centre_of_symmetry",
     "lieng1",
     "mlien",
     "read_deck",
+    "trc",
     "write_deck",
 ]

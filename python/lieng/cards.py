@@ -511,7 +511,7 @@ def write_cards(values: dict, layout: Sequence[Card]) -> list[str]:
 
 
 #: Programs with a deck layout, and the module that holds each one's ``Deck``.
-PROGRAM_MODULES = {"lieng1": "lieng.lieng1", "mlien": "lieng.mlien"}
+PROGRAM_MODULES = {"lieng1": "lieng.lieng1", "mlien": "lieng.mlien", "trc": "lieng.trc"}
 
 
 def _deck_class(program: str):

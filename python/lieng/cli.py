@@ -17,7 +17,9 @@ from .errors import LiengInputError
 
 __all__ = ["main"]
 
-PROGRAMS = ("lieng1", "mlien")
+PROGRAMS = ("lieng1", "mlien", "trc")
+#: the programs whose decks hold a characteristic (cycles, sweep)
+CHAR_PROGRAMS = ("lieng1", "mlien")
 
 
 def _run_lieng1(args) -> int:
@@ -79,6 +81,59 @@ def _run_mlien(args) -> int:
     return 0
 
 
+def _is_csv(path) -> bool:
+    p = Path(path)
+    if p.suffix.lower() == ".csv":
+        return True
+    try:
+        with open(p, encoding="utf-8", errors="replace") as fh:
+            first = fh.readline()
+    except OSError:
+        return False
+    return "t" in [c.strip() for c in first.split(",")]
+
+
+def _run_trc(args) -> int:
+    from .cards import read_deck
+    from .graf import trc_plots
+    from .listing import trc_listing
+    from .outputs import staged_outdir, write_csv, write_lines
+    from .trc import CSV_COLUMNS, read_csv, trc
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if _is_csv(args.deck):
+            if args.omnh is None:
+                raise LiengInputError(f"{args.deck}: a CSV trace needs --omnh (natural frequency of the "
+                                      f"horizontal mode, rad/s)")
+            t, x, xn = read_csv(args.deck)
+            if xn is not None and args.omnv is None:
+                raise LiengInputError(f"{args.deck}: column xn needs --omnv (natural frequency of the normal "
+                                      f"mode, rad/s)")
+            res = trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin, _where=str(args.deck))
+        else:
+            if args.omnh is not None or args.omnv is not None:
+                raise LiengInputError("--omnh/--omnv are for CSV input: a TRC deck gives them on card 2")
+            deck = read_deck(args.deck, program="trc")
+            res = deck.run(origin=args.origin)
+    for w in caught:
+        print(f"lieng: warning: {w.message}", file=sys.stderr)
+    listing = trc_listing(res)
+    cols = res.columns()
+    with staged_outdir(args.outdir) as tmp:
+        write_lines(tmp / "listing.txt", listing)
+        write_csv(tmp / "trc.csv", list(CSV_COLUMNS),
+                  ([int(cols["i"][k])] + [float(cols[c][k]) for c in CSV_COLUMNS[1:]] for k in range(res.nn)))
+        if not args.no_plots:
+            trc_plots(res, tmp)
+    if not args.quiet:
+        eln = "" if not res.has_normal else f", ELN = {res.eln:.6g} mm"
+        print(f"trc: {res.nn} points over {res.t[-1] - res.t[0]:.6g} s; origin ({res.origin}) EL = {res.el:.6g} mm"
+              f"{eln}")
+        print(f"wrote {Path(args.outdir) / 'listing.txt'}, trc.csv" + ("" if args.no_plots else " and the plots"))
+    return 0
+
+
 def _deck_char(args):
     from .cards import read_deck
 
@@ -137,16 +192,20 @@ def build_parser() -> argparse.ArgumentParser:
     r = sub.add_parser("run", help="run a 1971 card deck (listing, CSV, plots)",
                        description="Run a card deck through a restored 1971 program.")
     r.add_argument("program", choices=PROGRAMS, help="which program's deck")
-    r.add_argument("deck", help="the card deck (one card per line)")
+    r.add_argument("deck", help="the card deck (one card per line); for trc also a CSV t,x[,xn] (s, mm, mm)")
     r.add_argument("-o", "--outdir", required=True, help="output directory")
     r.add_argument("--lookup", choices=("listing", "bisect", "fast"), default="listing",
                    help="POINT step: the 1971 arithmetic (listing, default), bisection look-up with "
                         "bit-identical results (bisect), or no trig calls (fast, last bits differ)")
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    r.add_argument("--omnh", type=float, help="trc, CSV input: natural frequency of the horizontal mode (rad/s)")
+    r.add_argument("--omnv", type=float, help="trc, CSV input with xn: natural frequency of the normal mode (rad/s)")
+    r.add_argument("--origin", choices=("listing", "fit"), default="listing",
+                   help="trc: EL/ELN as the listing finds them (default) or by a better-conditioned line fit")
     r.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
     def deck_args(q):
         q.add_argument("deck", help="a LIENG-1 (or, with --program mlien, MLIEN) card deck")
-        q.add_argument("--program", choices=PROGRAMS, default="lieng1", help="the deck's layout (default lieng1)")
+        q.add_argument("--program", choices=CHAR_PROGRAMS, default="lieng1", help="the deck's layout (default lieng1)")
         q.add_argument("--mode", choices=("exact", "faithful"), default="exact",
                        help="exact flow (default) or the listing's POINT step with the deck's DTHETA")
         q.add_argument("--lookup", choices=("listing", "bisect", "fast"), default="listing",
@@ -170,7 +229,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         if args.command == "run":
-            return {"lieng1": _run_lieng1, "mlien": _run_mlien}[args.program](args)
+            return {"lieng1": _run_lieng1, "mlien": _run_mlien, "trc": _run_trc}[args.program](args)
         if args.command == "cycles":
             return _cycles(args)
         if args.command == "sweep":

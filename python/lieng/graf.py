@@ -17,12 +17,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["graf", "lieng1_plots", "mlien_plots"]
+__all__ = ["graf", "lieng1_plots", "mlien_plots", "trc_plots"]
 
 
 def graf(curves: Sequence[tuple], path, *, xlabel: str, ylabel: str, title: str, caption: str = "",
          labels: Sequence[str] | None = None, styles: Sequence[dict] | None = None,
-         equal: bool = False) -> Path:
+         equal: bool = False, xlim: tuple | None = None) -> Path:
     """Draw curves as one GRAF call did and save a PNG.
 
     Parameters
@@ -42,6 +42,8 @@ def graf(curves: Sequence[tuple], path, *, xlabel: str, ylabel: str, title: str,
     equal : bool, optional
         Equal scales on both axes (the Lienard plane, where the construction
         is geometric).
+    xlim : (float, float), optional
+        Abscissa limits (points outside are still drawn, off the axes).
     """
     fig, ax = plt.subplots(figsize=(8.2, 5.6), dpi=110)
     for i, (x, y) in enumerate(curves):
@@ -56,6 +58,8 @@ def graf(curves: Sequence[tuple], path, *, xlabel: str, ylabel: str, title: str,
     ax.axhline(0.0, color="0.5", lw=0.5)
     if equal:
         ax.set_aspect("equal", adjustable="datalim")
+    if xlim is not None:
+        ax.set_xlim(*xlim)
     if labels is not None:
         ax.legend(fontsize=7, loc="best", ncol=2)
     if caption:
@@ -114,3 +118,69 @@ def mlien_plots(result, outdir) -> list[Path]:
              caption=cap, labels=["trajectory", "VO = YMDL of the moved characteristic"],
              styles=[{"lw": 0.9}, {"color": "0.4", "lw": 0.8, "ls": "--"}]),
     ]
+
+
+def _clip(a, lim):
+    """The listing's plot clips (loops 1230, 1240): |value| > lim drawn at +-lim."""
+    return np.clip(np.asarray(a, float), -lim, lim)
+
+
+def _robust_xlim(*arrays):
+    """Limits holding the 3rd-97th percentiles, widened: the reverse
+    construction's few ill-conditioned points near the abscissa would
+    otherwise flatten the characteristic to a line."""
+    a = np.concatenate([np.asarray(x, float).ravel() for x in arrays])
+    a = a[np.isfinite(a)]
+    if a.size < 5:
+        return None
+    lo, hi = np.percentile(a, [3, 97])
+    pad = 0.4 * (hi - lo) if hi > lo else 1.0
+    return (lo - pad, hi + pad)
+
+
+def trc_plots(result, outdir) -> list[Path]:
+    """The GRAF plots of TRC (App. 7): the Lisitsyn ellipse x-xn, both phase
+    planes, the apparent coefficient of friction against velocity, the
+    trajectories and the characteristic lines in the shifted Lienard plane,
+    and the non-dimensional coefficient of friction.  Curves of the normal
+    mode are drawn only when the trace has one.  Points 1 and NN of the
+    characteristic are not constructed by the listing and are left out."""
+    r = result
+    outdir = Path(outdir)
+    inner = slice(1, r.nn - 1)
+    cap = (f"TRC (Antoniou 1971, App. 7; ch. 3.3): {r.nn} points, OMNH = {r.omnh:g} rad/s"
+           + (f", OMNV = {r.omnv:g} rad/s" if r.has_normal else "") + f"; origin ({r.origin}) EL = {r.el:.4g} mm")
+    two = r.has_normal
+    hn = ["horizontal (friction) mode", "normal mode"]
+    paths = []
+    if two:
+        paths.append(graf([(r.x, r.xn)], outdir / "lisitsyn_ellipse.png", xlabel="friction displacement x (mm)",
+                          ylabel="normal displacement xn (mm)", title="Lisitsyn ellipse: normal against "
+                          "friction displacement", caption=cap + "  (ch. 3.3.1, App. 5)"))
+    paths.append(graf([(r.x[1:], r.v[1:])] + ([(r.xn[1:], r.vn[1:])] if two else []), outdir / "phase_planes.png",
+                      xlabel="displacement (mm)", ylabel="velocity (mm/s)",
+                      title="Experimental phase-plane trajectories", caption=cap, labels=hn[: 1 + two]))
+    if two:
+        paths.append(graf([(-r.v[1:], _clip(r.am[1:], 3.0))], outdir / "apparent_mu.png",
+                          xlabel="sliding velocity -v (mm/s)", ylabel="apparent coefficient of friction X/XN",
+                          title="Apparent coefficient of friction against velocity", caption=cap + "  (Fig. 3.21)",
+                          styles=[{"lw": 0.8, "marker": ".", "ms": 3}]))
+    paths.append(graf([(r.xlnr, r.vln)] + ([(r.xnlnr, r.vnln)] if two else []), outdir / "lienard_phase_planes.png",
+                      xlabel="displacement from the origin (mm)", ylabel="velocity / natural frequency (mm)",
+                      title="Trajectories in the Lienard plane (smoothed by BELFIT)", caption=cap,
+                      labels=hn[: 1 + two], equal=True))
+    paths.append(graf([(_clip(r.xx[inner], 20.0), r.yy[inner])]
+                      + ([(_clip(r.xxn[inner], 20.0), r.yyn[inner])] if two else []),
+                      outdir / "characteristic.png", xlabel="characteristic x = -phi(v) (mm)",
+                      ylabel="velocity / natural frequency (mm)",
+                      title="Experimental characteristic lines (reverse Lienard construction)",
+                      caption=cap + "  (ch. 3.3.3, Fig. 4.1)", labels=hn[: 1 + two],
+                      styles=[{"lw": 0.8, "marker": ".", "ms": 3}] * 2,
+                      xlim=_robust_xlim(r.xx[inner], r.xxn[inner] if two else r.xx[inner])))
+    paths.append(graf([(_clip(r.amt[inner], 3.0), r.yy[inner])]
+                      + ([(_clip(r.amtn[inner], 3.0), r.yyn[inner])] if two else []),
+                      outdir / "nondim_mu.png", xlabel="non-dimensional coefficient of friction (mu - mu(0))",
+                      ylabel="velocity / natural frequency (mm)", title="Coefficient of friction against velocity",
+                      caption=cap, labels=hn[: 1 + two], styles=[{"lw": 0.8, "marker": ".", "ms": 3}] * 2,
+                      xlim=_robust_xlim(r.amt[inner], r.amtn[inner] if two else r.amt[inner])))
+    return paths

@@ -176,8 +176,8 @@ _ENDS = [17, 25, 33, 41, 49, 57, 65, 73]
 #: spacing is lost in the OCR and is laid out on FORMAT 80's columns
 #: (RESTORATION.md R20).
 FORMATS_TRC = {
-    70: "(" + ",".join([_h("1" + _STARS[1:], 90), _h(_text("STICK-SLIP CYCLE ANALYSIS"), 90),
-                        _h(_STARS, 90), _h(_text("DATA"), 90)]).replace(",", "/", 3) + ")",
+    70: "(" + "/".join([_h("1" + _STARS[1:], 90), _h(_text("STICK-SLIP CYCLE ANALYSIS"), 90),
+                        _h(_STARS, 90), _h(_text("DATA"), 90)]) + ")",
     110: "(" + "/".join(_h(_text(t), 90) for t in (
         "SURFACES            STEEL ST 37.11 ON STEEL ST 37.11",
         "SURFACE ROUGHNESS   20 MICROIN CLA FOR BOTH SPECIMENS",

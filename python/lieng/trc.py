@@ -51,7 +51,7 @@ from .cards import Card, card_location, read_cards, write_cards
 from .errors import LiengInputError
 
 __all__ = ["Deck", "TrcResult", "trc", "calibrate", "belfit", "lsqfit", "read_csv", "CSV_COLUMNS",
-           "NMIN", "NMAX_DECK"]
+           "NMIN", "NMAX_DECK", "origin_fit"]
 
 #: BELFIT needs 2M-1 = 9 points; the issue and the origin search want 10.
 NMIN = 10
@@ -65,7 +65,7 @@ HEAD: list[Card] = [
     Card("(I5)", ("NN",)),
 ]
 
-#: The columns of ``trc.csv`` (values after the EL / ELN shift).
+#: The columns of ``trc.csv`` (values after the EL / ELN shift: x = X - EL, xn = XN - ELN).
 CSV_COLUMNS = ("i", "t", "x", "v", "xn", "vn", "am", "xx", "yy", "amt", "xxn", "yyn", "amtn")
 
 
@@ -183,10 +183,10 @@ class Deck:
         return calibrate(self.nt, self.nh, self.nhn, ho=self.ho, hon=self.hon, vel=self.vel, sensf=self.sensf,
                          sensn=self.sensn, an1=self.an1, an2=self.an2)
 
-    def run(self) -> "TrcResult":
-        """Run the deck as the 1971 program did."""
+    def run(self, origin: str = "listing") -> "TrcResult":
+        """Run the deck as the 1971 program did (``origin``: see :func:`trc`)."""
         t, x, xn = self.calibrated()
-        res = trc(t, x, xn, omnh=self.omnh, omnv=self.omnv, _where=self.source)
+        res = trc(t, x, xn, omnh=self.omnh, omnv=self.omnv, origin=origin, _where=self.source)
         res.readings = (self.nt.copy(), self.nh.copy(), self.nhn.copy())
         return res
 
@@ -251,8 +251,13 @@ class TrcResult:
     xlnr, xnlnr : ndarray
         X - EL and XN - ELN: the trajectories in the shifted Lienard plane.
     el, eln : float
-        The origins found (ELN is NaN when the normal velocity has no - to +
-        sign change).
+        The origins used for the shift (ELN is NaN when the normal velocity
+        has no - to + sign change).
+    origin : {"listing", "fit"}
+        How EL and ELN were found (see :func:`trc`).
+    el_listing, eln_listing : float
+        The listing's EL and ELN (equal to ``el``, ``eln`` for
+        ``origin="listing"``).
     omnh, omnv : float
         Natural frequencies (rad/s).
     """
@@ -279,16 +284,21 @@ class TrcResult:
     omnv: float
     has_normal: bool = True
     readings: tuple | None = None
+    origin: str = "listing"
+    el_listing: float = math.nan
+    eln_listing: float = math.nan
 
     @property
     def nn(self) -> int:
         return self.t.size
 
     def columns(self) -> dict:
-        """The ``trc.csv`` columns, in :data:`CSV_COLUMNS` order."""
+        """The ``trc.csv`` columns, in :data:`CSV_COLUMNS` order, values
+        after the EL / ELN shift: ``x`` is XLNR = X - EL and ``xn`` is
+        XNLNR = XN - ELN (the listing's table prints X and XN unshifted)."""
         cols = {"i": np.arange(1, self.nn + 1)}
         for name in CSV_COLUMNS[1:]:
-            cols[name] = getattr(self, name)
+            cols[name] = getattr(self, {"x": "xlnr", "xn": "xnlnr"}.get(name, name))
         return cols
 
 
@@ -314,7 +324,60 @@ def _check_trace(t, x, xn, where):
                               f"must increase")
 
 
-def trc(t, x, xn=None, *, omnh, omnv=None, _where: str = "trc") -> TrcResult:
+def _first_crossing(v, sign):
+    """The listing's loop 52 (sign = -1) / 520 (sign = +1): the first 0-based
+    i, 1 <= i <= n-5, with sign*v[i] < 0 and sign*v[i+1..i+4] > 0."""
+    n = v.size
+    for i in range(1, n - 4):
+        if sign * v[i] < 0 and np.all(sign * v[i + 1 : i + 5] > 0):
+            return i
+    return None
+
+
+def origin_fit(xx_raw, yy, vel, sign, lo=0.1, hi=0.4, half=12):
+    """A modern estimate of the origin (EL or ELN), beside the listing's.
+
+    The listing interpolates the characteristic linearly between the two
+    constructed points on either side of the velocity sign change.  Those
+    are the worst-conditioned points of the reverse construction (the
+    trajectory crosses the abscissa at right angles, and BELFIT fits the
+    velocity as a function of a displacement that turns there), so its EL
+    can be off by the size of the characteristic.  Here a straight line is
+    fitted by least squares to the constructed points within ``half``
+    samples of the same sign change whose velocity lies between ``lo`` and
+    ``hi`` times the largest |velocity| of the trace, and evaluated at zero
+    velocity.
+
+    Parameters
+    ----------
+    xx_raw, yy : ndarray
+        The unshifted characteristic (XX before loop 540) and its velocity.
+    vel : ndarray
+        The velocity whose sign change marks the origin (VLN or VNLN).
+    sign : {-1, +1}
+        -1: + to - (EL); +1: - to + (ELN).
+
+    Returns
+    -------
+    float
+        The origin, or NaN when there is no sign change or fewer than two
+        usable points on each side.
+    """
+    i = _first_crossing(vel, sign)
+    if i is None:
+        return math.nan
+    n = vel.size
+    s = float(np.max(np.abs(vel)))
+    j = np.arange(max(1, i - half), min(n - 1, i + half + 1))
+    a = np.abs(yy[j])
+    j = j[(a >= lo * s) & (a <= hi * s) & np.isfinite(xx_raw[j])]
+    if np.count_nonzero(yy[j] > 0) < 2 or np.count_nonzero(yy[j] < 0) < 2:
+        return math.nan
+    coef = np.linalg.lstsq(np.c_[np.ones(j.size), yy[j]], xx_raw[j], rcond=None)[0]
+    return float(coef[0])
+
+
+def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str = "trc") -> TrcResult:
     """The TRC reduction of a calibrated trace.
 
     Parameters
@@ -329,6 +392,12 @@ def trc(t, x, xn=None, *, omnh, omnv=None, _where: str = "trc") -> TrcResult:
         Natural frequency of the horizontal mode (rad/s).
     omnv : float, optional
         Natural frequency of the normal mode (rad/s); required with ``xn``.
+    origin : {"listing", "fit"}, optional
+        "listing" (default): EL and ELN as the 1971 program finds them, by
+        linear interpolation between the two constructed points either side
+        of the velocity sign change.  "fit": a modern, better-conditioned
+        estimate (:func:`origin_fit`); the listing's values stay in
+        ``el_listing`` and ``eln_listing``.
 
     Returns
     -------
@@ -358,8 +427,27 @@ def trc(t, x, xn=None, *, omnh, omnv=None, _where: str = "trc") -> TrcResult:
     with np.errstate(all="ignore"):
         (xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, xlnr, xnlnr, amt, amtn, el, eln, has_eln, status,
          where) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
+    if origin not in ("listing", "fit"):
+        raise LiengInputError(f"{_where}: origin must be 'listing' or 'fit', not {origin!r}")
     if status != 0:
         raise _err_status(int(status), int(where), _where)
+    el_listing, eln_listing = float(el), float(eln) if has_eln else math.nan
+    if origin == "fit":
+        el_new = origin_fit(xx + el, yy, vln, -1)
+        if not math.isfinite(el_new):
+            raise LiengInputError(f"{_where}: origin 'fit': fewer than two constructed points on each side of "
+                                  f"the velocity sign change with 0.1-0.4 of the largest |VLN|")
+        xx = xx + el - el_new
+        xlnr = xlnr + el - el_new
+        amt = xx * omnh**2 / 9810.0
+        el = el_new
+        if has_normal and has_eln:
+            eln_new = origin_fit(xxn + eln, yyn, vnln, +1)
+            if math.isfinite(eln_new):
+                xxn = xxn + eln - eln_new
+                xnlnr = xnlnr + eln - eln_new
+                amtn = xxn * omnv**2 / 9810.0
+                eln = eln_new
     if not has_normal:
         nan = np.full_like(x, np.nan)
         xn_out, vn, vnln, am, xxn, yyn, amtn, xnlnr = (nan.copy() for _ in range(8))
@@ -374,7 +462,8 @@ def trc(t, x, xn=None, *, omnh, omnv=None, _where: str = "trc") -> TrcResult:
             eln = math.nan
     return TrcResult(t=t, x=xs, xn=xn_out, v=v, vn=vn, vln=vln, vnln=vnln, am=am, xx=xx, yy=yy, amt=amt,
                      xxn=xxn, yyn=yyn, amtn=amtn, xlnr=xlnr, xnlnr=xnlnr, el=float(el), eln=float(eln),
-                     omnh=float(omnh), omnv=float(omnv) if has_normal else math.nan, has_normal=has_normal)
+                     omnh=float(omnh), omnv=float(omnv) if has_normal else math.nan, has_normal=has_normal,
+                     origin=origin, el_listing=el_listing, eln_listing=eln_listing if has_normal else math.nan)
 
 
 def belfit(x, y):
