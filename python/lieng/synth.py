@@ -131,10 +131,10 @@ def synthesize(effect: str = "none", seed: int | None = None, *, cycles: int = 1
 
     # effect parameters
     ky = a_age = tau_age = dtw = a_drv = f_drv = eps_tr = f_tr = 0.0
-    cy, y0 = 0.0, 1.0
+    cy, y0, a_ny = 0.0, 1.0, 0.0
     steps = None
     if effect == "load_variation":
-        ky = k * float(g.uniform(0.4, 0.8))            # per mm of y
+        ky = k * float(g.uniform(1.0, 2.0))            # per mm of y
         cy = float(g.uniform(0.3, 0.6))                # y follows x through the coupling
         truth.update(ky=ky, cy=cy)
     elif effect == "twin_branch":
@@ -151,7 +151,8 @@ def synthesize(effect: str = "none", seed: int | None = None, *, cycles: int = 1
     elif effect == "triggering":
         eps_tr = k * float(g.uniform(0.04, 0.08))
         f_tr = fn * float(g.uniform(3.3, 5.7))
-        truth.update(eps=eps_tr, f_tr=f_tr)
+        a_ny = 2 * (fs - fk) * float(g.uniform(0.04, 0.1))   # the normal oscillation (mm)
+        truth.update(eps=eps_tr, f_tr=f_tr, a_normal=a_ny)
     elif effect == "drive_modulation":
         a_drv = k * float(g.uniform(0.25, 0.45))
         f_drv = (1.0 / period_est) * float(g.uniform(0.23, 0.41))
@@ -169,7 +170,7 @@ def synthesize(effect: str = "none", seed: int | None = None, *, cycles: int = 1
         return v0 * (1.0 + a_drv * math.sin(2 * math.pi * f_drv * t + ph_drv))
 
     def normal_disp(xx, t):
-        return y0 + cy * xx + (0.02 * math.sin(2 * math.pi * f_tr * t + ph_tr) if eps_tr else 0.0)
+        return y0 + cy * xx + (a_ny * math.sin(2 * math.pi * f_tr * t + ph_tr) if eps_tr else 0.0)
 
     def load(xx, t):
         ld = 1.0 + ky * (normal_disp(xx, t) - y0) if ky else 1.0

@@ -1,0 +1,613 @@
+"""``lieng diagnose``: what the thesis's 1-DoF model gets wrong on a measured
+stick-slip record, which effect causes it, and how much an extended model gains.
+
+The path (each step documented in ``report.md``):
+
+1. **Cycles.**  The record (t, x[, y][, v0]) is smoothed (Savitzky-Golay) and
+   cut into stick-slip cycles: slip where the velocity falls well below zero;
+   the peak (x where slip starts), the trough (lowest x of the slip), the
+   period and the rise time (trough to next peak) of each cycle.
+2. **Baseline.**  The thesis's model: a 1-DoF slider (natural frequency
+   ``fn``), a single-valued characteristic (static limit FS, kinetic level
+   FK), constant load and drive.  FS is the median peak; FK is adjusted until
+   the simulated trough matches.  Simulated with the compiled slider core
+   (``fortran/slider.f90``).
+3. **Evidence** for each effect, a statistic with a threshold (score =
+   statistic / threshold; an effect is named when its score is >= 1, the
+   largest wins, else ``none``):
+
+   * ``twin_branch``: the reverse construction gives the friction during slip,
+     F = x + x''/wn**2 (the centre of curvature of the trajectory in the
+     Lienard plane, TRC's XX).  F is fitted by a quadratic in the relative
+     velocity plus a step between the accelerating and decelerating halves
+     of each slip; the step (the width of the loop of the experimental
+     characteristic, ch. 4.1) over the stick-slip amplitude, threshold 0.04.
+   * ``load_variation``: the same fit with a term in the low-passed normal
+     displacement y; its contribution (coefficient x std of y in slip) over
+     the amplitude, threshold 0.03.
+   * ``static_ageing``: the peak against the log of the drive velocity during
+     the stick (which sets the stick time); the change of the peak over the
+     drive range, over the amplitude, threshold 0.05.  Needs a varying drive
+     (a ``v0`` column); with a constant drive every stick lasts the same and
+     ageing cannot be told from a higher FS.
+   * ``triggering``: the strongest spectral line of y (or x) above 2 fn that
+     is not a harmonic of the stick-slip; its amplitude over the stick-slip
+     amplitude of x, threshold 0.02 (App. 2's ever-present triggering is
+     100-500 times smaller than the stick-slip).
+   * ``drive_modulation``: the stick velocity (a line fitted to x in each
+     stick) relative to the given drive; its coefficient of variation over
+     the sticks, threshold 0.08.
+4. **Extension** with the named effect, fitted on the first 70 % of the
+   record.
+5. **Gain** on the last 30 %: the error is the RMS of normalised differences
+   of cycle features and effect statistics between the record and the
+   simulation (mean and spread of peak, trough, period, rise; the five
+   statistics above), each displacement over the amplitude, each time over
+   the mean period, each statistic over its threshold.  Plain time-domain
+   RMS is not used: stick-slip phase drifts.  gain = 1 - e_extended /
+   e_baseline.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from . import _core
+from .errors import LiengInputError
+
+__all__ = ["EFFECTS", "THRESHOLDS", "Record", "Diagnosis", "read_record", "cycles", "diagnose", "simulate"]
+
+EFFECTS = ("load_variation", "twin_branch", "static_ageing", "triggering", "drive_modulation")
+THRESHOLDS = {"twin_branch": 0.04, "load_variation": 0.03, "static_ageing": 0.05, "triggering": 0.02,
+              "drive_modulation": 0.08}
+ZETA = 0.02
+TRAIN = 0.7
+METRIC = ("RMS of normalised differences, record vs simulation, on the last 30 % of the record: mean and std "
+          "of peak, trough (/ amplitude), period, rise time (/ mean period), and the five effect statistics "
+          "(/ their thresholds)")
+
+
+@dataclass
+class Record:
+    """A measured record: time (s), x (mm), optional y (mm) and v0 (mm/s)."""
+
+    t: np.ndarray
+    x: np.ndarray
+    y: np.ndarray | None = None
+    v0: np.ndarray | None = None
+    source: str = "record"
+
+    @property
+    def dt(self) -> float:
+        return float(np.median(np.diff(self.t)))
+
+
+def _fail(msg):
+    raise LiengInputError(msg)
+
+
+def read_record(path, v0: float | None = None) -> Record:
+    """Read a CSV ``t,x[,y][,v0]`` (s, mm, mm, mm/s).
+
+    The drive is the ``v0`` column or, without it, the constant ``v0``.
+    Raises :class:`LiengInputError` naming the line and column of bad input.
+    """
+    p = Path(path)
+    try:
+        with open(p, newline="", encoding="utf-8") as fh:
+            rows = list(csv.reader(fh))
+    except FileNotFoundError:
+        _fail(f"{path}: no such file")
+    except (IsADirectoryError, UnicodeDecodeError):
+        _fail(f"{path}: not a CSV text file")
+    if not rows:
+        _fail(f"{path}: empty file: expected a header t,x[,y][,v0]")
+    head = [h.strip() for h in rows[0]]
+    for need in ("t", "x"):
+        if need not in head:
+            _fail(f"{path}: no column {need!r} in the header (expected t,x[,y][,v0]: s, mm, mm, mm/s)")
+    cols = {n: head.index(n) for n in ("t", "x", "y", "v0") if n in head}
+    data = {n: [] for n in cols}
+    for r, row in enumerate(rows[1:], start=2):
+        if not row or all(not c.strip() for c in row):
+            continue
+        for n, c in cols.items():
+            cell = row[c].strip() if c < len(row) else ""
+            try:
+                val = float(cell)
+            except ValueError:
+                _fail(f"{path}: line {r}, column {n}: {cell!r} is not a number")
+            if not math.isfinite(val):
+                _fail(f"{path}: line {r}, column {n}: {cell} is not a finite number")
+            data[n].append(val)
+    a = {n: np.asarray(v, float) for n, v in data.items()}
+    t = a["t"]
+    if t.size < 50:
+        _fail(f"{path}: {t.size} samples: too short for stick-slip analysis")
+    d = np.diff(t)
+    bad = np.flatnonzero(d <= 0)
+    if bad.size:
+        k = bad[0] + 3
+        what = "repeats" if d[bad[0]] == 0 else "goes back"
+        _fail(f"{path}: line {k}, column t: time {what} ({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
+    if np.max(d) > 1.5 * np.min(d) + 1e-12:
+        _fail(f"{path}: column t: the samples must be evenly spaced (steps from {np.min(d):g} to {np.max(d):g} s)")
+    vcol = a.get("v0")
+    if vcol is None:
+        if v0 is None:
+            _fail(f"{path}: no column v0 and no --v0: the drive velocity is needed")
+        if not (math.isfinite(v0) and v0 > 0):
+            _fail(f"--v0 {v0}: the drive velocity must be a positive number (mm/s)")
+        vcol_arr = None
+    else:
+        if np.any(vcol <= 0):
+            k = int(np.flatnonzero(vcol <= 0)[0]) + 2
+            _fail(f"{path}: line {k}, column v0: the drive velocity must be positive")
+        vcol_arr = vcol
+    rec = Record(t=t, x=a["x"], y=a.get("y"), v0=vcol_arr, source=str(path))
+    rec.v0_nominal = float(v0) if vcol_arr is None else float(np.mean(vcol_arr))
+    return rec
+
+
+# ------------------------------------------------------------------ signal
+
+def _smooth(x, dt, fn, deriv=0):
+    from scipy.signal import savgol_filter
+
+    w = int(round(0.25 / fn / dt)) | 1
+    w = max(w, 7)
+    return savgol_filter(x, w, 3, deriv=deriv, delta=dt)
+
+
+@dataclass
+class Cycles:
+    """Stick-slip cycles of a trace (indices into the samples)."""
+
+    peak_i: np.ndarray
+    trough_i: np.ndarray
+    slip: list
+    v: np.ndarray
+    a: np.ndarray
+    peak: np.ndarray
+    trough: np.ndarray
+    period: np.ndarray
+    rise: np.ndarray
+
+    @property
+    def amplitude(self) -> float:
+        return float(np.median(self.peak[: self.trough.size] - self.trough))
+
+
+def cycles(t, x, fn, vd) -> Cycles:
+    """Cut a trace into stick-slip cycles (see the module docstring)."""
+    dt = float(t[1] - t[0])
+    v = _smooth(x, dt, fn, 1)
+    a = _smooth(x, dt, fn, 2)
+    vmin = float(np.percentile(v, 0.5))
+    thr = min(-0.5 * float(np.median(vd)), 0.25 * vmin)
+    if not vmin < 0 or not np.any(v < thr):
+        raise LiengInputError("no stick-slip: the velocity never falls well below zero (no slip)")
+    m = v < thr
+    edges = np.flatnonzero(np.diff(m.astype(int)))
+    starts = [i + 1 for i in edges if not m[i]]
+    ends = [i + 1 for i in edges if m[i]]
+    if m[0]:
+        ends = ends[1:] if ends and (not starts or ends[0] < starts[0]) else ends
+    slips = []
+    prev_end = 0
+    for s in starts:
+        e = next((e for e in ends if e > s), None)
+        if e is None:
+            break
+        slips.append((s, e))
+    peak_i, trough_i, slip = [], [], []
+    for k, (s, e) in enumerate(slips):
+        lo = slips[k - 1][1] if k else 0
+        if s - lo < 3:
+            continue
+        p = lo + int(np.argmax(x[lo:s + 1]))
+        nxt = slips[k + 1][0] if k + 1 < len(slips) else len(x)
+        q = s + int(np.argmin(x[s:min(nxt, e + (e - s) + 3)]))
+        peak_i.append(p)
+        trough_i.append(q)
+        slip.append((p, q))
+        prev_end = e
+    peak_i = np.array(peak_i, int)
+    trough_i = np.array(trough_i, int)
+    if peak_i.size < 4:
+        raise LiengInputError(f"fewer than three stick-slip cycles in the record ({max(peak_i.size - 1, 0)} found)")
+    peak = x[peak_i]
+    trough = x[trough_i]
+    period = np.diff(t[peak_i])
+    rise = t[peak_i[1:]] - t[trough_i[:-1]]
+    return Cycles(peak_i, trough_i, slip, v, a, peak, trough, period, rise)
+
+
+# ------------------------------------------------------------------ evidence
+
+def _slip_samples(c: Cycles, t, vd, ymask=None):
+    """Samples inside slips (trimmed), with the branch: -0.5 before the
+    relative speed peaks, +0.5 after."""
+    idx, br = [], []
+    for p, q in c.slip:
+        n = q - p
+        if n < 6:
+            continue
+        lo, hi = p + max(1, n // 8), q - max(1, n // 8)
+        seg = np.arange(lo, hi)
+        vr = vd[seg] - c.v[seg]
+        kmax = int(np.argmax(vr))
+        idx.append(seg)
+        br.append(np.where(np.arange(seg.size) <= kmax, -0.5, 0.5))
+    if not idx:
+        return np.array([], int), np.array([])
+    return np.concatenate(idx), np.concatenate(br)
+
+
+def _lowpass(y, dt, fcut):
+    f = np.fft.rfftfreq(y.size, dt)
+    Y = np.fft.rfft(y - y.mean())
+    Y[f > fcut] = 0
+    return np.fft.irfft(Y, y.size) + y.mean()
+
+
+def _spectral_line(sig, dt, fmin, f0):
+    """The strongest line above fmin that is not a harmonic of f0 (within
+    one frequency bin): (frequency, amplitude, phase) from a Hann-windowed
+    FFT of ``sig``, which should already be free of the stick-slip-locked
+    part (see :func:`statistics`)."""
+    s = sig - np.mean(sig)
+    n = s.size
+    w = np.hanning(n)
+    S = np.fft.rfft(s * w)
+    f = np.fft.rfftfreq(n, dt)
+    amp = 2 * np.abs(S) / w.sum()
+    ok = (f > fmin) & (f < 0.4 / dt)
+    harm = np.abs(f / f0 - np.round(f / f0)) * f0 < 1.0 / (n * dt)
+    ok &= ~harm
+    if not np.any(ok):
+        return 0.0, 0.0, 0.0
+    k = int(np.flatnonzero(ok)[np.argmax(amp[ok])])
+    return float(f[k]), float(amp[k]), float(np.angle(S[k]))
+
+
+def statistics(t, x, y, vd, fn, c: Cycles | None = None, v0_given=None) -> dict:
+    """The five effect statistics (see the module docstring) and the cycles."""
+    dt = float(t[1] - t[0])
+    if c is None:
+        c = cycles(t, x, fn, vd)
+    wn = 2 * math.pi * fn
+    amp = c.amplitude
+    st = {}
+    # reverse construction during slip
+    F = x + c.a / wn**2
+    idx, br = _slip_samples(c, t, vd)
+    vr = vd[idx] - c.v[idx]
+    cols = [np.ones(idx.size), vr / vr.std(), (vr / vr.std()) ** 2, br, c.v[idx] / c.v[idx].std()]
+    ylow = None
+    if y is not None:
+        ylow = _lowpass(y, dt, 1.5 * fn)
+        yl = ylow[idx] - ylow[idx].mean()
+        if yl.std() > 0:
+            cols.append(yl / yl.std())
+    A = np.column_stack(cols)
+    coef = np.linalg.lstsq(A, F[idx], rcond=None)[0]
+    st["twin_branch"] = float(coef[3]) / amp
+    st["load_variation"] = abs(float(coef[5])) / amp if len(coef) > 5 else 0.0
+    # ageing: peak against log drive during the stick
+    vst = np.array([np.mean(vd[c.trough_i[k]:c.peak_i[k + 1] + 1]) for k in range(c.trough_i.size - 1)
+                    if k + 1 < c.peak_i.size])
+    pk = c.peak[1:1 + vst.size]
+    if vst.size >= 3 and np.ptp(np.log(vst)) > 0.2:
+        slope = np.polyfit(np.log(vst), pk, 1)[0]
+        st["static_ageing"] = float(-slope * np.ptp(np.log(vst))) / amp
+    else:
+        st["static_ageing"] = 0.0
+    # triggering line
+    f0 = 1.0 / float(np.mean(c.period))
+    # the part of y (or x) not locked to the stick-slip: y less its regression
+    # on the smoothed motion; the line is searched above 2 fn
+    if y is not None:
+        xs = _smooth(x, dt, fn)
+        A = np.column_stack([np.ones_like(xs), xs, c.v])
+        r = y - A @ np.linalg.lstsq(A, y, rcond=None)[0]
+    else:
+        r = x
+    f_tr, a_tr, ph = _spectral_line(r, dt, 2.0 * fn, f0)
+    st["triggering"] = a_tr / amp
+    # stick velocity
+    ratios = []
+    for k in range(min(c.trough_i.size, c.peak_i.size - 1)):
+        lo, hi = c.trough_i[k], c.peak_i[k + 1]
+        n = hi - lo
+        seg = np.arange(lo + n // 4, hi - n // 8)
+        if seg.size < 5:
+            continue
+        sl = np.polyfit(t[seg], x[seg], 1)[0]
+        ratios.append(sl / np.mean(vd[seg]))
+    ratios = np.array(ratios)
+    st["drive_modulation"] = float(np.std(ratios) / abs(np.mean(ratios))) if ratios.size >= 3 else 0.0
+    aux = {"cycles": c, "amp": amp, "f_tr": f_tr, "a_tr": a_tr, "ph_tr": ph, "ylow": ylow, "f0": f0,
+           "coef": coef}
+    return st, aux
+
+
+# ------------------------------------------------------------------ model
+
+@dataclass
+class Params:
+    """The slider's parameters (mm, s)."""
+
+    fs: float
+    fk: float
+    zeta: float = ZETA
+    ds: float = 0.0
+    vs: float = 1.0
+    delta: float = 0.0
+    age_a: float = 0.0
+    age_tau: float = 0.01
+    load_k: float = 0.0            # load = 1 + load_k * (ylow - mean)
+    trig_eps: float = 0.0          # load *= 1 + eps sin(2 pi f t + ph)
+    trig_f: float = 0.0
+    trig_ph: float = 0.0
+    drv_a: float = 0.0             # vd *= 1 + a sin(2 pi f t + ph)
+    drv_f: float = 0.0
+    drv_ph: float = 0.0
+
+    def to_json(self) -> dict:
+        return {k: float(v) for k, v in self.__dict__.items()}
+
+
+def simulate(p: Params, t, vd, fn, ylow=None, x0=0.0):
+    """Simulate the slider on the record's time grid with the compiled core.
+
+    Returns x, v, state (1 stick, 0 slip)."""
+    t = np.asarray(t, float)
+    dt = float(t[1] - t[0])
+    vdd = np.asarray(vd, float).copy()
+    if p.drv_a:
+        vdd = vdd * (1.0 + p.drv_a * np.sin(2 * math.pi * p.drv_f * t + p.drv_ph))
+    load = np.ones_like(t)
+    if p.load_k and ylow is not None:
+        load = load + p.load_k * (ylow - np.mean(ylow))
+    if p.trig_eps:
+        load = load * (1.0 + p.trig_eps * np.sin(2 * math.pi * p.trig_f * t + p.trig_ph))
+    if np.any(load <= 0):
+        load = np.maximum(load, 0.05)
+    wn = 2 * math.pi * fn
+    nsub = max(4, int(math.ceil(dt * wn / 0.05)))
+    x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, p.fk, p.ds, p.vs, p.delta,
+                                            p.age_a, p.age_tau, x0)
+    if status != 0:
+        raise LiengInputError(f"the slider simulation failed (status {status}): check --fn and the record's units")
+    return x, v, state
+
+
+# ------------------------------------------------------------------ errors
+
+def _features(t, x, y, vd, fn, sel):
+    """Cycle features and statistics on the samples sel (a slice)."""
+    tt, xx = t[sel], x[sel]
+    yy = None if y is None else y[sel]
+    st, aux = statistics(tt, xx, yy, vd[sel], fn)
+    c = aux["cycles"]
+    f = {"peak_mean": np.mean(c.peak), "peak_std": np.std(c.peak), "trough_mean": np.mean(c.trough),
+         "trough_std": np.std(c.trough), "period_mean": np.mean(c.period), "period_std": np.std(c.period),
+         "rise_mean": np.mean(c.rise), "rise_std": np.std(c.rise)}
+    return {k: float(v) for k, v in f.items()}, st, aux
+
+
+def _line_amp(x, dt, f):
+    """Amplitude of x at frequency f (least squares on a sine and cosine)."""
+    tt = np.arange(x.size) * dt
+    A = np.column_stack([np.ones(x.size), tt, np.sin(2 * math.pi * f * tt), np.cos(2 * math.pi * f * tt)])
+    c = np.linalg.lstsq(A, x, rcond=None)[0]
+    return float(math.hypot(c[2], c[3]))
+
+
+def feature_error(meas, sim, amp, period, line=None) -> float:
+    """The documented error (module docstring); ``line`` = (measured, simulated)
+    amplitude of x at a named triggering line, compared relatively."""
+    fm, sm = meas
+    fs_, ss = sim
+    d = []
+    if line is not None:
+        d.append((line[0] - line[1]) / max(line[0], 1e-12))
+    for k, v in fm.items():
+        scale = period if k.startswith(("period", "rise")) else amp
+        d.append((v - fs_[k]) / scale)
+    for k in EFFECTS:
+        d.append((sm[k] - ss[k]) / THRESHOLDS[k])
+    return float(np.sqrt(np.mean(np.square(d))))
+
+
+# ------------------------------------------------------------------ fitting
+
+def _fit_fk(p: Params, t, vd, fn, target_trough, ylow=None, it=6):
+    """Adjust FK so that the simulated mean trough matches."""
+    lo, hi = p.fk - 0.5 * (p.fs - p.fk), p.fk + 0.45 * (p.fs - p.fk)
+    for _ in range(it):
+        x, _, _ = simulate(p, t, vd, fn, ylow)
+        try:
+            c = cycles(t, x, fn, vd)
+            tr = float(np.mean(c.trough))
+        except LiengInputError:
+            tr = p.fs
+        if tr > target_trough:
+            hi = p.fk
+        else:
+            lo = p.fk
+        p.fk = 0.5 * (lo + hi)
+    return p
+
+
+@dataclass
+class Diagnosis:
+    effect: str
+    scores: dict
+    statistics: dict
+    baseline: Params
+    extended: Params
+    baseline_error: float
+    extended_error: float
+    gain: float
+    features: dict = field(default_factory=dict)
+    reason: str = ""
+
+    def to_json(self) -> dict:
+        fitted = {"baseline": self.baseline.to_json(), "extended": self.extended.to_json()}
+        return {"effect": self.effect, "scores": {k: round(v, 6) for k, v in self.scores.items()},
+                "baseline_error": self.baseline_error, "extended_error": self.extended_error, "gain": self.gain,
+                "metric": METRIC, "fitted": fitted, "statistics": self.statistics, "thresholds": THRESHOLDS,
+                "features": self.features, "reason": self.reason}
+
+
+def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Diagnosis:
+    """Diagnose a record (see the module docstring).
+
+    Parameters
+    ----------
+    rec : Record
+        From :func:`read_record`.
+    fn : float
+        Natural frequency of the tangential mode (Hz).
+    fnv : float, optional
+        Natural frequency of the normal mode (Hz); informative only.
+    keep : dict, optional
+        Filled with intermediate arrays for the plots.
+
+    Returns
+    -------
+    Diagnosis
+    """
+    if not (math.isfinite(fn) and fn > 0):
+        raise LiengInputError(f"--fn {fn}: the natural frequency must be a positive number (Hz)")
+    t, x, y = rec.t, rec.x, rec.y
+    dt = float(t[1] - t[0])
+    if fn * dt > 0.2:
+        raise LiengInputError(f"--fn {fn} Hz: the record has only {1 / (fn * dt):.1f} samples per natural period; "
+                              f"at least 5 are needed")
+    t = t - t[0]
+    vd = rec.v0 if rec.v0 is not None else np.full_like(t, rec.v0_nominal)
+    st, aux = statistics(t, x, y, vd, fn)
+    c = aux["cycles"]
+    amp = aux["amp"]
+    scores = {k: abs(st[k]) / THRESHOLDS[k] for k in EFFECTS}
+    if y is None:
+        scores["load_variation"] = 0.0
+    best = max(scores, key=scores.get)
+    effect = best if scores[best] >= 1.0 else "none"
+    reason = (f"{best}: score {scores[best]:.2f} >= 1" if effect != "none" else
+              f"every score below 1 (largest: {best}, {scores[best]:.2f}): the baseline explains the record "
+              f"within its noise")
+
+    ntr = int(TRAIN * t.size)
+    tr = slice(0, ntr)
+    ylow = aux["ylow"]
+    # baseline on the training part
+    ctr = cycles(t[tr], x[tr], fn, vd[tr])
+    fs = float(np.median(ctr.peak))
+    fk0 = 0.5 * (float(np.median(ctr.trough)) + fs)
+    base = Params(fs=fs, fk=fk0)
+    base = _fit_fk(base, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
+    ext = Params(**base.__dict__)
+    if effect == "twin_branch":
+        ext.delta = 2.0 * st["twin_branch"] * amp
+        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
+    elif effect == "load_variation":
+        yl = ylow[tr]
+        idx, br = _slip_samples(ctr, t[tr], vd[tr])
+        F = x[tr] + ctr.a / (2 * math.pi * fn) ** 2
+        vr = vd[tr][idx] - ctr.v[idx]
+        A = np.column_stack([np.ones(idx.size), vr, vr**2, br, ctr.v[idx], yl[idx] - np.mean(yl)])
+        coef = np.linalg.lstsq(A, F[idx], rcond=None)[0]
+        ext.load_k = float(coef[5]) / max(base.fk, 1e-12)
+        # the static limit follows the load too: FS is the peak over the load at the peak
+        ld = 1.0 + ext.load_k * (yl[ctr.peak_i] - np.mean(yl))
+        ext.fs = float(np.median(ctr.peak / ld))
+        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)), ylow=yl)
+    elif effect == "static_ageing":
+        vst = np.array([np.mean(vd[tr][ctr.trough_i[k]:ctr.peak_i[k + 1] + 1]) for k in range(ctr.trough_i.size - 1)])
+        pk = ctr.peak[1:1 + vst.size]
+        # stick time ~ rise distance / drive; FS (1 + a ln(1 + ts/tau)) fitted as a line in ln(ts)
+        ts = (pk - np.mean(ctr.trough)) / vst
+        b, a0 = np.polyfit(np.log(ts), pk, 1)
+        ext.age_tau = 0.01 * float(np.min(ts))
+        # peak = FS (1 + A ln(1 + ts/tau)) ~ FS + FS A ln(ts/tau): FS A = b
+        base_level = a0 + b * math.log(ext.age_tau)
+        ext.fs = max(base_level, 0.2 * fs)
+        ext.age_a = b / ext.fs
+        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
+    elif effect == "triggering":
+        f_tr, ph = aux["f_tr"], aux["ph_tr"]
+        ext.trig_f = f_tr
+        # the load modulation from the friction it leaves in slip: regress F on sin/cos at f_tr
+        idx, br = _slip_samples(ctr, t[tr], vd[tr])
+        F = x[tr] + ctr.a / (2 * math.pi * fn) ** 2
+        vr = vd[tr][idx] - ctr.v[idx]
+        tt = t[tr][idx]
+        A = np.column_stack([np.ones(idx.size), vr, vr**2, br, ctr.v[idx], np.sin(2 * math.pi * f_tr * tt),
+                             np.cos(2 * math.pi * f_tr * tt)])
+        coef = np.linalg.lstsq(A, F[idx], rcond=None)[0]
+        ext.trig_eps = float(math.hypot(coef[5], coef[6])) / max(base.fk, 1e-12)
+        ext.trig_ph = float(math.atan2(coef[6], coef[5]))
+        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
+    elif effect == "drive_modulation":
+        mids, rat = [], []
+        for k in range(min(ctr.trough_i.size, ctr.peak_i.size - 1)):
+            lo, hi = ctr.trough_i[k], ctr.peak_i[k + 1]
+            n = hi - lo
+            seg = np.arange(lo + n // 4, hi - n // 8)
+            if seg.size < 5:
+                continue
+            mids.append(np.mean(t[tr][seg]))
+            rat.append(np.polyfit(t[tr][seg], x[tr][seg], 1)[0] / np.mean(vd[tr][seg]))
+        mids, rat = np.array(mids), np.array(rat)
+        f_ss = 1.0 / np.mean(ctr.period)
+        best_fit = None
+        for f in np.linspace(0.05 * f_ss, 0.95 * f_ss, 400):
+            A = np.column_stack([np.ones(mids.size), np.sin(2 * math.pi * f * mids), np.cos(2 * math.pi * f * mids)])
+            coef, res, *_ = np.linalg.lstsq(A, rat, rcond=None)
+            r = float(np.sum((A @ coef - rat) ** 2))
+            if best_fit is None or r < best_fit[0]:
+                best_fit = (r, f, coef)
+        _, f, coef = best_fit
+        ext.drv_f = float(f)
+        ext.drv_a = float(math.hypot(coef[1], coef[2]) / coef[0])
+        ext.drv_ph = float(math.atan2(coef[2], coef[1]))
+        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
+
+    # errors on the last 30 %
+    te = slice(ntr, t.size)
+    meas = _features(t, x, y, vd, fn, te)
+    amp_te = float(np.median(meas[2]["cycles"].peak[: meas[2]["cycles"].trough.size] - meas[2]["cycles"].trough))
+    per_te = meas[0]["period_mean"]
+
+    def err(p):
+        xs, _, _ = simulate(p, t, vd, fn, ylow)
+        try:
+            sim = _features(t, xs, y if (p.load_k or p.trig_eps) else y, vd, fn, te)
+        except LiengInputError:
+            return float("inf"), None
+        line = None
+        if effect == "triggering":
+            line = (_line_amp(x[te] - _lowpass(x[te], dt, 2 * fn), dt, aux["f_tr"]),
+                    _line_amp(xs[te] - _lowpass(xs[te], dt, 2 * fn), dt, aux["f_tr"]))
+        return feature_error(meas[:2], sim[:2], amp_te, per_te, line), (xs, y)
+
+    e0, s0 = err(base)
+    e1, s1 = (e0, s0) if effect == "none" else err(ext)
+    gain = 0.0 if effect == "none" or not math.isfinite(e0) or e0 == 0 else 1.0 - e1 / e0
+    if keep is not None:
+        keep.update(t=t, x=x, y=y, vd=vd, x_base=s0[0] if s0 else None, x_ext=s1[0] if s1 else None,
+                    cycles=c, fn=fn, ntr=ntr)
+    feats = {"record": meas[0]}
+    return Diagnosis(effect=effect, scores=scores, statistics={k: float(v) for k, v in st.items()}, baseline=base,
+                     extended=ext if effect != "none" else base, baseline_error=float(e0), extended_error=float(e1),
+                     gain=float(gain), features=feats, reason=reason)
