@@ -181,6 +181,48 @@ def _sweep(args) -> int:
     return 0
 
 
+def _diagnose(args) -> int:
+    import json
+
+    from .diagnose import diagnose, read_record, write_outputs
+    from .outputs import staged_outdir
+
+    if args.fn is None or not args.fn > 0:
+        raise LiengInputError(f"--fn {args.fn}: the natural frequency of the tangential mode must be positive (Hz)")
+    rec = read_record(args.data, v0=args.v0)
+    keep: dict = {}
+    d = diagnose(rec, args.fn, args.fnv, keep=keep)
+    with staged_outdir(args.outdir) as tmp:
+        write_outputs(d, keep, tmp, str(args.data))
+    if args.json:
+        print(json.dumps(d.to_json(), indent=2))
+    elif not args.quiet:
+        print(f"{args.data}: effect {d.effect}; gain {d.gain:.3f} (baseline error {d.baseline_error:.4g}, extended "
+              f"{d.extended_error:.4g})")
+        print("scores: " + ", ".join(f"{k} {v:.2f}" for k, v in d.scores.items()))
+        print(f"wrote {Path(args.outdir) / 'diagnosis.json'}, report.md, trace.png, phase_plane.png, "
+              f"characteristic.png, spectrum.png")
+    return 0
+
+
+def _synth(args) -> int:
+    from .synth import synthesize
+
+    rec = synthesize(args.effect, args.seed, cycles=args.cycles, strength=args.strength)
+    out = Path(args.output)
+    if out.parent and not out.parent.exists():
+        raise LiengInputError(f"-o {args.output}: the directory {out.parent} does not exist")
+    tmp = out.with_name(f".{out.name}.tmp")
+    rec.write_csv(tmp)
+    tmp.replace(out)
+    if not args.quiet:
+        extra = "" if rec.y is None else f" --fnv {rec.fnv:.6g}"
+        v0 = "" if rec.v0_col is not None else f" --v0 {rec.v0:.6g}"
+        print(f"wrote {out} ({rec.t.size} samples); analyse with: lieng diagnose {out}{v0} --fn {rec.fn:.6g}{extra} "
+              f"-o DIR")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="lieng",
@@ -221,6 +263,29 @@ def build_parser() -> argparse.ArgumentParser:
                                    "it, and its cycles found again; v_oc is where the S.L.C. and U.L.C. merge.")
     deck_args(w)
     w.add_argument("--v0", required=True, metavar="START:STOP:N", help="driving velocities (mm/s)")
+    dg = sub.add_parser("diagnose", help="what the 1-DoF model gets wrong on a measured trace, and why",
+                        description="Fit the thesis's 1-DoF model to a measured stick-slip record, name the "
+                                    "effect it misses (load_variation, twin_branch, static_ageing, triggering, "
+                                    "drive_modulation or none), fit the extended model and measure the gain on "
+                                    "the last 30 %% of the record.")
+    dg.add_argument("data", help="CSV with t (s), x (mm), optional y (mm), optional v0 (mm/s)")
+    dg.add_argument("--v0", type=float, help="nominal drive velocity (mm/s) when there is no v0 column")
+    dg.add_argument("--fn", type=float, required=True, help="natural frequency of the tangential mode (Hz)")
+    dg.add_argument("--fnv", type=float, help="natural frequency of the normal mode (Hz), with y")
+    dg.add_argument("-o", "--outdir", required=True, help="output directory")
+    dg.add_argument("--json", action="store_true", help="print diagnosis.json")
+    dg.add_argument("-q", "--quiet", action="store_true")
+    sy = sub.add_parser("synth", help="synthetic measured data with an effect hidden in it",
+                        description="Write a synthetic stick-slip record (t,x[,y][,v0]) with realistic noise "
+                                    "and one effect hidden in it (an implementation independent of diagnose).")
+    sy.add_argument("--effect", default="none",
+                    choices=("none", "load_variation", "twin_branch", "static_ageing", "triggering",
+                             "drive_modulation"))
+    sy.add_argument("--seed", type=int, default=None, help="random seed")
+    sy.add_argument("--cycles", type=int, default=16, help="approximate number of cycles (default 16)")
+    sy.add_argument("--strength", type=float, default=None, help="scale of the effect (default 1)")
+    sy.add_argument("-o", "--output", required=True, help="the CSV to write")
+    sy.add_argument("-q", "--quiet", action="store_true")
     return p
 
 
@@ -234,6 +299,10 @@ def main(argv=None) -> int:
             return _cycles(args)
         if args.command == "sweep":
             return _sweep(args)
+        if args.command == "diagnose":
+            return _diagnose(args)
+        if args.command == "synth":
+            return _synth(args)
         parser.error(f"unknown command {args.command}")  # pragma: no cover
     except LiengInputError as exc:
         print(f"lieng: error: {exc}", file=sys.stderr)

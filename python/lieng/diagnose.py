@@ -611,3 +611,109 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
     return Diagnosis(effect=effect, scores=scores, statistics={k: float(v) for k, v in st.items()}, baseline=base,
                      extended=ext if effect != "none" else base, baseline_error=float(e0), extended_error=float(e1),
                      gain=float(gain), features=feats, reason=reason)
+
+
+# ------------------------------------------------------------------ outputs
+
+def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
+    """Write diagnosis.json, report.md and the plots into ``outdir``
+    (a staged directory: see :func:`lieng.outputs.staged_outdir`)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = Path(outdir)
+    (out / "diagnosis.json").write_text(json.dumps(d.to_json(), indent=2) + "\n", encoding="utf-8")
+    t, x = keep["t"], keep["x"]
+    xb, xe = keep["x_base"], keep["x_ext"]
+    fn = keep["fn"]
+    cap = f"lieng diagnose {source}: effect {d.effect}, gain {d.gain:.2f} on the last 30 % (metric: feature RMS)"
+    curves = [("record", x, {"color": "k", "lw": 0.8}), ("baseline (thesis 1-DoF)", xb, {"color": "C0", "lw": 0.8})]
+    if d.effect != "none" and xe is not None:
+        curves.append((f"extended ({d.effect})", xe, {"color": "C3", "lw": 0.8}))
+    fig, ax = plt.subplots(figsize=(9, 4.8), dpi=110)
+    for lab, arr, kw in curves:
+        if arr is not None:
+            ax.plot(t, arr, label=lab, **kw)
+    ax.axvline(t[keep["ntr"]], color="0.5", ls="--", lw=0.8)
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel("tangential displacement x (mm)")
+    ax.set_title("Measured trace against the simulations (dashed: start of the held-out 30 %)")
+    ax.legend(fontsize=8)
+    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(out / "trace.png")
+    plt.close(fig)
+    dt = float(t[1] - t[0])
+    fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
+    for lab, arr, kw in curves:
+        if arr is not None:
+            ax.plot(arr, _smooth(arr, dt, fn, 1) / (2 * math.pi * fn), label=lab, **kw)
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("velocity / natural frequency (mm)")
+    ax.set_title("Phase plane (Lienard plane)")
+    ax.legend(fontsize=8)
+    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(out / "phase_plane.png")
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
+    for lab, arr, kw in curves:
+        if arr is None:
+            continue
+        try:
+            c = cycles(t, arr, fn, keep["vd"])
+        except LiengInputError:
+            continue
+        idx, _ = _slip_samples(c, t, keep["vd"])
+        F = arr + c.a / (2 * math.pi * fn) ** 2
+        ax.plot(keep["vd"][idx] - c.v[idx], F[idx], ".", ms=2, label=lab, color=kw["color"])
+    ax.set_xlabel("sliding velocity v0 - x' (mm/s)")
+    ax.set_ylabel("friction / stiffness F = x + x''/wn^2 (mm)")
+    ax.set_title("Characteristic during slip (reverse construction): a loop means two branches")
+    ax.legend(fontsize=8)
+    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(out / "characteristic.png")
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
+    for lab, arr, kw in curves:
+        if arr is None:
+            continue
+        s = arr - arr.mean()
+        w = np.hanning(s.size)
+        f = np.fft.rfftfreq(s.size, dt)
+        ax.semilogy(f[1:], (2 * np.abs(np.fft.rfft(s * w)) / w.sum())[1:] + 1e-12, label=lab, **kw)
+    if keep.get("y") is not None:
+        s = keep["y"] - keep["y"].mean()
+        w = np.hanning(s.size)
+        f = np.fft.rfftfreq(s.size, dt)
+        ax.semilogy(f[1:], (2 * np.abs(np.fft.rfft(s * w)) / w.sum())[1:] + 1e-12, label="record, y", color="C2",
+                    lw=0.6)
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("amplitude (mm)")
+    ax.set_title("Spectrum")
+    ax.legend(fontsize=8)
+    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(out / "spectrum.png")
+    plt.close(fig)
+    lines = [f"# lieng diagnose: {source}", "",
+             f"**Effect: `{d.effect}`** ({d.reason}).", "",
+             f"* baseline error e0 = {d.baseline_error:.4g}, extended error e1 = {d.extended_error:.4g}, "
+             f"gain = 1 - e1/e0 = {d.gain:.3f}",
+             f"* metric: {METRIC}", "",
+             "## Evidence (score = statistic / threshold; >= 1 names the effect)", "",
+             "| effect | statistic | threshold | score |", "|---|---|---|---|"]
+    for k in EFFECTS:
+        lines.append(f"| {k} | {d.statistics[k]:.4g} | {THRESHOLDS[k]} | {d.scores[k]:.3f} |")
+    lines += ["", "## Fitted parameters (mm, s)", "", "| parameter | baseline | extended |", "|---|---|---|"]
+    b, e = d.baseline.to_json(), d.extended.to_json()
+    for k in b:
+        lines.append(f"| {k} | {b[k]:.5g} | {e[k]:.5g} |")
+    lines += ["", "## Record features (last 30 %)", ""]
+    for k, v in d.features["record"].items():
+        lines.append(f"* {k}: {v:.5g}")
+    lines += ["", "Plots: trace.png, phase_plane.png, characteristic.png, spectrum.png.", ""]
+    (out / "report.md").write_text("\n".join(lines), encoding="utf-8")
