@@ -615,6 +615,23 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
 
 # ------------------------------------------------------------------ outputs
 
+def _finish(fig, ax, cap, path) -> None:
+    import matplotlib.pyplot as plt
+
+    ax.legend(fontsize=8)
+    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def _amp_spectrum(sig, dt):
+    s = sig - sig.mean()
+    w = np.hanning(s.size)
+    f = np.fft.rfftfreq(s.size, dt)
+    return f[1:], (2 * np.abs(np.fft.rfft(s * w)) / w.sum())[1:] + 1e-12
+
+
 def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     """Write diagnosis.json, report.md and the plots into ``outdir``
     (a staged directory: see :func:`lieng.outputs.staged_outdir`)."""
@@ -640,11 +657,7 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("tangential displacement x (mm)")
     ax.set_title("Measured trace against the simulations (dashed: start of the held-out 30 %)")
-    ax.legend(fontsize=8)
-    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(out / "trace.png")
-    plt.close(fig)
+    _finish(fig, ax, cap, out / "trace.png")
     dt = float(t[1] - t[0])
     fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
     for lab, arr, kw in curves:
@@ -653,11 +666,7 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("velocity / natural frequency (mm)")
     ax.set_title("Phase plane (Lienard plane)")
-    ax.legend(fontsize=8)
-    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(out / "phase_plane.png")
-    plt.close(fig)
+    _finish(fig, ax, cap, out / "phase_plane.png")
     fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
     for lab, arr, kw in curves:
         if arr is None:
@@ -672,33 +681,18 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     ax.set_xlabel("sliding velocity v0 - x' (mm/s)")
     ax.set_ylabel("friction / stiffness F = x + x''/wn^2 (mm)")
     ax.set_title("Characteristic during slip (reverse construction): a loop means two branches")
-    ax.legend(fontsize=8)
-    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(out / "characteristic.png")
-    plt.close(fig)
+    _finish(fig, ax, cap, out / "characteristic.png")
     fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
     for lab, arr, kw in curves:
         if arr is None:
             continue
-        s = arr - arr.mean()
-        w = np.hanning(s.size)
-        f = np.fft.rfftfreq(s.size, dt)
-        ax.semilogy(f[1:], (2 * np.abs(np.fft.rfft(s * w)) / w.sum())[1:] + 1e-12, label=lab, **kw)
+        ax.semilogy(*_amp_spectrum(arr, dt), label=lab, **kw)
     if keep.get("y") is not None:
-        s = keep["y"] - keep["y"].mean()
-        w = np.hanning(s.size)
-        f = np.fft.rfftfreq(s.size, dt)
-        ax.semilogy(f[1:], (2 * np.abs(np.fft.rfft(s * w)) / w.sum())[1:] + 1e-12, label="record, y", color="C2",
-                    lw=0.6)
+        ax.semilogy(*_amp_spectrum(keep["y"], dt), label="record, y", color="C2", lw=0.6)
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("amplitude (mm)")
     ax.set_title("Spectrum")
-    ax.legend(fontsize=8)
-    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(out / "spectrum.png")
-    plt.close(fig)
+    _finish(fig, ax, cap, out / "spectrum.png")
     lines = [f"# lieng diagnose: {source}", "",
              f"**Effect: `{d.effect}`** ({d.reason}).", "",
              f"* baseline error e0 = {d.baseline_error:.4g}, extended error e1 = {d.extended_error:.4g}, "
