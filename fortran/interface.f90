@@ -262,7 +262,7 @@ end subroutine core_trc_calibrate
 
 !> TRC: velocities, BELFIT, the reverse Lienard construction, EL and ELN.
 subroutine core_trc_reduce(nn, t, x, xn, omnh, omnv, xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, &
-                           xlnr, xnlnr, amt, amtn, el, eln, has_eln, status, where)
+                           xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where)
    use lienard_core, only: wp
    use trc, only: trc_reduce
    implicit none
@@ -289,11 +289,13 @@ subroutine core_trc_reduce(nn, t, x, xn, omnh, omnv, xs, v, vn, vln, vnln, am, x
    real(wp), intent(out) :: el                 !< EL
    real(wp), intent(out) :: eln                !< ELN
    integer, intent(out) :: has_eln             !< 1 when ELN was found
+   integer, intent(out) :: iel                 !< point of the + to - sign change (1-based)
+   integer, intent(out) :: ieln                !< point of the - to + sign change (0: none)
    integer, intent(out) :: status              !< 0 or a trc error code
    integer, intent(out) :: where               !< point of the error
    xs = x
    call trc_reduce(nn, t, xs, xn, omnh, omnv, v, vn, vln, vnln, am, xx, yy, xxn, yyn, &
-                   xlnr, xnlnr, amt, amtn, el, eln, has_eln, status, where)
+                   xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where)
 end subroutine core_trc_reduce
 
 !> BELFIT: group-fitting smoothing of Y as a function of X.

@@ -90,7 +90,7 @@ contains
    !> Points 1 and NN of XX, YY, XXN, YYN are not constructed (loop 51 runs
    !> J = 2..NN-1): they keep the listing's zero, shifted.
    subroutine trc_reduce(nn, t, x, xn, omnh, omnv, v, vn, vln, vnln, am, xx, yy, xxn, yyn, &
-                         xlnr, xnlnr, amt, amtn, el, eln, has_eln, status, where)
+                         xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where)
       integer, intent(in) :: nn                !< NN, number of points
       real(wp), intent(in) :: t(nn)            !< T (s)
       real(wp), intent(inout) :: x(nn)         !< X (mm)
@@ -113,6 +113,8 @@ contains
       real(wp), intent(out) :: el              !< EL, the horizontal origin
       real(wp), intent(out) :: eln             !< ELN, the normal origin (0 when has_eln = 0)
       integer, intent(out) :: has_eln          !< 1 when the normal sign change was found
+      integer, intent(out) :: iel              !< I of loop 52: the last + before the - run (0: none)
+      integer, intent(out) :: ieln             !< I of loop 520: the last - before the + run (0: none)
       integer, intent(out) :: status           !< trc_ok or an error code
       integer, intent(out) :: where            !< the point the error refers to
       real(wp) :: xxx(nn), yyy(nn)
@@ -122,7 +124,7 @@ contains
       v = 0.0_wp; vn = 0.0_wp; vln = 0.0_wp; vnln = 0.0_wp; am = 0.0_wp
       xx = 0.0_wp; yy = 0.0_wp; xxn = 0.0_wp; yyn = 0.0_wp
       xlnr = 0.0_wp; xnlnr = 0.0_wp; amt = 0.0_wp; amtn = 0.0_wp
-      el = 0.0_wp; eln = 0.0_wp; has_eln = 0; where = 0
+      el = 0.0_wp; eln = 0.0_wp; has_eln = 0; iel = 0; ieln = 0; where = 0
       status = trc_ok
       if (nn < 2 * belfit_group) then
          status = trc_bad_size
@@ -183,6 +185,7 @@ contains
          return
       end if
       i = ifound
+      iel = ifound
       el = (xx(i + 1) * yy(i) - xx(i) * yy(i + 1)) / (yy(i) - yy(i + 1))
 
       ! DO 520 I=2,NK: VNLN < 0 followed by four positive samples
@@ -196,6 +199,7 @@ contains
       end do
       if (ifound /= 0) then
          i = ifound
+         ieln = ifound
          eln = (xxn(i + 1) * yyn(i) - xxn(i) * yyn(i + 1)) / (yyn(i) - yyn(i + 1))
          has_eln = 1
       end if

@@ -12,9 +12,7 @@ from lieng.synth import synthesize
 
 
 def run(rec):
-    r = Record(t=rec.t, x=rec.x, y=rec.y, v0=rec.v0_col)
-    r.v0_nominal = rec.v0
-    return diagnose(r, rec.fn)
+    return diagnose(Record(t=rec.t, x=rec.x, y=rec.y, v0=rec.v0_col, v0_nominal=rec.v0), rec.fn)
 
 
 @pytest.mark.parametrize("effect", ["twin_branch", "drive_modulation", "load_variation", "triggering"])

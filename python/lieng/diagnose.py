@@ -50,7 +50,6 @@ The path (each step documented in ``report.md``):
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 from dataclasses import dataclass, field
@@ -60,6 +59,7 @@ import numpy as np
 
 from . import _core
 from .errors import LiengInputError
+from .table import read_columns
 
 __all__ = ["EFFECTS", "THRESHOLDS", "Record", "Diagnosis", "read_record", "cycles", "diagnose", "simulate"]
 
@@ -82,10 +82,8 @@ class Record:
     y: np.ndarray | None = None
     v0: np.ndarray | None = None
     source: str = "record"
-
-    @property
-    def dt(self) -> float:
-        return float(np.median(np.diff(self.t)))
+    #: the constant drive (mm/s) when there is no v0 column (else its mean)
+    v0_nominal: float = math.nan
 
 
 def _fail(msg):
@@ -98,35 +96,7 @@ def read_record(path, v0: float | None = None) -> Record:
     The drive is the ``v0`` column or, without it, the constant ``v0``.
     Raises :class:`LiengInputError` naming the line and column of bad input.
     """
-    p = Path(path)
-    try:
-        with open(p, newline="", encoding="utf-8") as fh:
-            rows = list(csv.reader(fh))
-    except FileNotFoundError:
-        _fail(f"{path}: no such file")
-    except (IsADirectoryError, UnicodeDecodeError):
-        _fail(f"{path}: not a CSV text file")
-    if not rows:
-        _fail(f"{path}: empty file: expected a header t,x[,y][,v0]")
-    head = [h.strip() for h in rows[0]]
-    for need in ("t", "x"):
-        if need not in head:
-            _fail(f"{path}: no column {need!r} in the header (expected t,x[,y][,v0]: s, mm, mm, mm/s)")
-    cols = {n: head.index(n) for n in ("t", "x", "y", "v0") if n in head}
-    data = {n: [] for n in cols}
-    for r, row in enumerate(rows[1:], start=2):
-        if not row or all(not c.strip() for c in row):
-            continue
-        for n, c in cols.items():
-            cell = row[c].strip() if c < len(row) else ""
-            try:
-                val = float(cell)
-            except ValueError:
-                _fail(f"{path}: line {r}, column {n}: {cell!r} is not a number")
-            if not math.isfinite(val):
-                _fail(f"{path}: line {r}, column {n}: {cell} is not a finite number")
-            data[n].append(val)
-    a = {n: np.asarray(v, float) for n, v in data.items()}
+    a = read_columns(path, ("t", "x"), ("y", "v0"), "t,x[,y][,v0]: s, mm, mm, mm/s")
     t = a["t"]
     if t.size < 50:
         _fail(f"{path}: {t.size} samples: too short for stick-slip analysis")
@@ -150,9 +120,8 @@ def read_record(path, v0: float | None = None) -> Record:
             k = int(np.flatnonzero(vcol <= 0)[0]) + 2
             _fail(f"{path}: line {k}, column v0: the drive velocity must be positive")
         vcol_arr = vcol
-    rec = Record(t=t, x=a["x"], y=a.get("y"), v0=vcol_arr, source=str(path))
-    rec.v0_nominal = float(v0) if vcol_arr is None else float(np.mean(vcol_arr))
-    return rec
+    return Record(t=t, x=a["x"], y=a.get("y"), v0=vcol_arr, source=str(path),
+                  v0_nominal=float(v0) if vcol_arr is None else float(np.mean(vcol_arr)))
 
 
 # ------------------------------------------------------------------ signal
@@ -200,7 +169,6 @@ def cycles(t, x, fn, vd) -> Cycles:
     if m[0]:
         ends = ends[1:] if ends and (not starts or ends[0] < starts[0]) else ends
     slips = []
-    prev_end = 0
     for s in starts:
         e = next((e for e in ends if e > s), None)
         if e is None:
@@ -217,7 +185,6 @@ def cycles(t, x, fn, vd) -> Cycles:
         peak_i.append(p)
         trough_i.append(q)
         slip.append((p, q))
-        prev_end = e
     peak_i = np.array(peak_i, int)
     trough_i = np.array(trough_i, int)
     if peak_i.size < 4:
@@ -231,7 +198,7 @@ def cycles(t, x, fn, vd) -> Cycles:
 
 # ------------------------------------------------------------------ evidence
 
-def _slip_samples(c: Cycles, t, vd, ymask=None):
+def _slip_samples(c: Cycles, t, vd):
     """Samples inside slips (trimmed), with the branch: -0.5 before the
     relative speed peaks, +0.5 after."""
     idx, br = [], []
@@ -248,6 +215,35 @@ def _slip_samples(c: Cycles, t, vd, ymask=None):
     if not idx:
         return np.array([], int), np.array([])
     return np.concatenate(idx), np.concatenate(br)
+
+
+def _slip_design(c: Cycles, t, x, vd, fn):
+    """The reverse construction during slip: the sample indices, the friction
+    F = x + x''/wn**2 there (the trajectory's centre of curvature in the
+    Lienard plane, TRC's XX), and the baseline regressors of F: 1, the
+    relative velocity and its square (scaled), the branch step (-0.5/+0.5)
+    and the slider velocity (scaled; it carries the damping)."""
+    F = x + c.a / (2 * math.pi * fn) ** 2
+    idx, br = _slip_samples(c, t, vd)
+    vr = vd[idx] - c.v[idx]
+    cols = [np.ones(idx.size), vr / vr.std(), (vr / vr.std()) ** 2, br, c.v[idx] / c.v[idx].std()]
+    return idx, F[idx], cols
+
+
+def _stick_segments(c: Cycles):
+    """The inner part of each stick (trough to next peak, less its first
+    quarter and last eighth), as index arrays of at least 5 samples."""
+    for k in range(min(c.trough_i.size, c.peak_i.size - 1)):
+        lo, hi = c.trough_i[k], c.peak_i[k + 1]
+        n = hi - lo
+        seg = np.arange(lo + n // 4, hi - n // 8)
+        if seg.size >= 5:
+            yield seg
+
+
+def _stick_drive(c: Cycles, vd):
+    """Mean drive velocity over each stick (trough k to peak k+1)."""
+    return np.array([np.mean(vd[c.trough_i[k]:c.peak_i[k + 1] + 1]) for k in range(c.trough_i.size - 1)])
 
 
 def _lowpass(y, dt, fcut):
@@ -277,19 +273,15 @@ def _spectral_line(sig, dt, fmin, f0):
     return float(f[k]), float(amp[k]), float(np.angle(S[k]))
 
 
-def statistics(t, x, y, vd, fn, c: Cycles | None = None, v0_given=None) -> dict:
-    """The five effect statistics (see the module docstring) and the cycles."""
+def statistics(t, x, y, vd, fn) -> tuple[dict, dict]:
+    """The five effect statistics (see the module docstring), and the
+    cycles, amplitude, triggering line and low-passed y they came from."""
     dt = float(t[1] - t[0])
-    if c is None:
-        c = cycles(t, x, fn, vd)
-    wn = 2 * math.pi * fn
+    c = cycles(t, x, fn, vd)
     amp = c.amplitude
     st = {}
     # reverse construction during slip
-    F = x + c.a / wn**2
-    idx, br = _slip_samples(c, t, vd)
-    vr = vd[idx] - c.v[idx]
-    cols = [np.ones(idx.size), vr / vr.std(), (vr / vr.std()) ** 2, br, c.v[idx] / c.v[idx].std()]
+    idx, F, cols = _slip_design(c, t, x, vd, fn)
     ylow = None
     if y is not None:
         ylow = _lowpass(y, dt, 1.5 * fn)
@@ -297,12 +289,11 @@ def statistics(t, x, y, vd, fn, c: Cycles | None = None, v0_given=None) -> dict:
         if yl.std() > 0:
             cols.append(yl / yl.std())
     A = np.column_stack(cols)
-    coef = np.linalg.lstsq(A, F[idx], rcond=None)[0]
+    coef = np.linalg.lstsq(A, F, rcond=None)[0]
     st["twin_branch"] = float(coef[3]) / amp
     st["load_variation"] = abs(float(coef[5])) / amp if len(coef) > 5 else 0.0
     # ageing: peak against log drive during the stick
-    vst = np.array([np.mean(vd[c.trough_i[k]:c.peak_i[k + 1] + 1]) for k in range(c.trough_i.size - 1)
-                    if k + 1 < c.peak_i.size])
+    vst = _stick_drive(c, vd)
     pk = c.peak[1:1 + vst.size]
     if vst.size >= 3 and np.ptp(np.log(vst)) > 0.2:
         slope = np.polyfit(np.log(vst), pk, 1)[0]
@@ -319,22 +310,12 @@ def statistics(t, x, y, vd, fn, c: Cycles | None = None, v0_given=None) -> dict:
         r = y - A @ np.linalg.lstsq(A, y, rcond=None)[0]
     else:
         r = x
-    f_tr, a_tr, ph = _spectral_line(r, dt, 2.0 * fn, f0)
+    f_tr, a_tr, _ = _spectral_line(r, dt, 2.0 * fn, f0)
     st["triggering"] = a_tr / amp
     # stick velocity
-    ratios = []
-    for k in range(min(c.trough_i.size, c.peak_i.size - 1)):
-        lo, hi = c.trough_i[k], c.peak_i[k + 1]
-        n = hi - lo
-        seg = np.arange(lo + n // 4, hi - n // 8)
-        if seg.size < 5:
-            continue
-        sl = np.polyfit(t[seg], x[seg], 1)[0]
-        ratios.append(sl / np.mean(vd[seg]))
-    ratios = np.array(ratios)
+    ratios = np.array([np.polyfit(t[seg], x[seg], 1)[0] / np.mean(vd[seg]) for seg in _stick_segments(c)])
     st["drive_modulation"] = float(np.std(ratios) / abs(np.mean(ratios))) if ratios.size >= 3 else 0.0
-    aux = {"cycles": c, "amp": amp, "f_tr": f_tr, "a_tr": a_tr, "ph_tr": ph, "ylow": ylow, "f0": f0,
-           "coef": coef}
+    aux = {"cycles": c, "amp": amp, "f_tr": f_tr, "ylow": ylow}
     return st, aux
 
 
@@ -522,18 +503,16 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
         ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
     elif effect == "load_variation":
         yl = ylow[tr]
-        idx, br = _slip_samples(ctr, t[tr], vd[tr])
-        F = x[tr] + ctr.a / (2 * math.pi * fn) ** 2
-        vr = vd[tr][idx] - ctr.v[idx]
-        A = np.column_stack([np.ones(idx.size), vr, vr**2, br, ctr.v[idx], yl[idx] - np.mean(yl)])
-        coef = np.linalg.lstsq(A, F[idx], rcond=None)[0]
+        idx, F, cols = _slip_design(ctr, t[tr], x[tr], vd[tr], fn)
+        A = np.column_stack(cols + [yl[idx] - np.mean(yl)])
+        coef = np.linalg.lstsq(A, F, rcond=None)[0]
         ext.load_k = float(coef[5]) / max(base.fk, 1e-12)
         # the static limit follows the load too: FS is the peak over the load at the peak
         ld = 1.0 + ext.load_k * (yl[ctr.peak_i] - np.mean(yl))
         ext.fs = float(np.median(ctr.peak / ld))
         ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)), ylow=yl)
     elif effect == "static_ageing":
-        vst = np.array([np.mean(vd[tr][ctr.trough_i[k]:ctr.peak_i[k + 1] + 1]) for k in range(ctr.trough_i.size - 1)])
+        vst = _stick_drive(ctr, vd[tr])
         pk = ctr.peak[1:1 + vst.size]
         # stick time ~ rise distance / drive; FS (1 + a ln(1 + ts/tau)) fitted as a line in ln(ts)
         ts = (pk - np.mean(ctr.trough)) / vst
@@ -545,35 +524,25 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
         ext.age_a = b / ext.fs
         ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
     elif effect == "triggering":
-        f_tr, ph = aux["f_tr"], aux["ph_tr"]
+        f_tr = aux["f_tr"]
         ext.trig_f = f_tr
         # the load modulation from the friction it leaves in slip: regress F on sin/cos at f_tr
-        idx, br = _slip_samples(ctr, t[tr], vd[tr])
-        F = x[tr] + ctr.a / (2 * math.pi * fn) ** 2
-        vr = vd[tr][idx] - ctr.v[idx]
+        idx, F, cols = _slip_design(ctr, t[tr], x[tr], vd[tr], fn)
         tt = t[tr][idx]
-        A = np.column_stack([np.ones(idx.size), vr, vr**2, br, ctr.v[idx], np.sin(2 * math.pi * f_tr * tt),
-                             np.cos(2 * math.pi * f_tr * tt)])
-        coef = np.linalg.lstsq(A, F[idx], rcond=None)[0]
+        A = np.column_stack(cols + [np.sin(2 * math.pi * f_tr * tt), np.cos(2 * math.pi * f_tr * tt)])
+        coef = np.linalg.lstsq(A, F, rcond=None)[0]
         ext.trig_eps = float(math.hypot(coef[5], coef[6])) / max(base.fk, 1e-12)
         ext.trig_ph = float(math.atan2(coef[6], coef[5]))
         ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
     elif effect == "drive_modulation":
-        mids, rat = [], []
-        for k in range(min(ctr.trough_i.size, ctr.peak_i.size - 1)):
-            lo, hi = ctr.trough_i[k], ctr.peak_i[k + 1]
-            n = hi - lo
-            seg = np.arange(lo + n // 4, hi - n // 8)
-            if seg.size < 5:
-                continue
-            mids.append(np.mean(t[tr][seg]))
-            rat.append(np.polyfit(t[tr][seg], x[tr][seg], 1)[0] / np.mean(vd[tr][seg]))
-        mids, rat = np.array(mids), np.array(rat)
+        segs = list(_stick_segments(ctr))
+        mids = np.array([np.mean(t[tr][seg]) for seg in segs])
+        rat = np.array([np.polyfit(t[tr][seg], x[tr][seg], 1)[0] / np.mean(vd[tr][seg]) for seg in segs])
         f_ss = 1.0 / np.mean(ctr.period)
         best_fit = None
         for f in np.linspace(0.05 * f_ss, 0.95 * f_ss, 400):
             A = np.column_stack([np.ones(mids.size), np.sin(2 * math.pi * f * mids), np.cos(2 * math.pi * f * mids)])
-            coef, res, *_ = np.linalg.lstsq(A, rat, rcond=None)
+            coef = np.linalg.lstsq(A, rat, rcond=None)[0]
             r = float(np.sum((A @ coef - rat) ** 2))
             if best_fit is None or r < best_fit[0]:
                 best_fit = (r, f, coef)
@@ -586,27 +555,29 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
     # errors on the last 30 %
     te = slice(ntr, t.size)
     meas = _features(t, x, y, vd, fn, te)
-    amp_te = float(np.median(meas[2]["cycles"].peak[: meas[2]["cycles"].trough.size] - meas[2]["cycles"].trough))
+    amp_te = meas[2]["cycles"].amplitude
     per_te = meas[0]["period_mean"]
+
+    def line_amp(arr):
+        """x's amplitude at the named triggering line (the metric's extra term)."""
+        return _line_amp(arr[te] - _lowpass(arr[te], dt, 2 * fn), dt, aux["f_tr"])
+
+    line_meas = line_amp(x) if effect == "triggering" else None
 
     def err(p):
         xs, _, _ = simulate(p, t, vd, fn, ylow)
         try:
-            sim = _features(t, xs, y if (p.load_k or p.trig_eps) else y, vd, fn, te)
+            sim = _features(t, xs, y, vd, fn, te)
         except LiengInputError:
-            return float("inf"), None
-        line = None
-        if effect == "triggering":
-            line = (_line_amp(x[te] - _lowpass(x[te], dt, 2 * fn), dt, aux["f_tr"]),
-                    _line_amp(xs[te] - _lowpass(xs[te], dt, 2 * fn), dt, aux["f_tr"]))
-        return feature_error(meas[:2], sim[:2], amp_te, per_te, line), (xs, y)
+            return float("inf"), xs
+        line = None if line_meas is None else (line_meas, line_amp(xs))
+        return feature_error(meas[:2], sim[:2], amp_te, per_te, line), xs
 
-    e0, s0 = err(base)
-    e1, s1 = (e0, s0) if effect == "none" else err(ext)
+    e0, x_base = err(base)
+    e1, x_ext = (e0, x_base) if effect == "none" else err(ext)
     gain = 0.0 if effect == "none" or not math.isfinite(e0) or e0 == 0 else 1.0 - e1 / e0
     if keep is not None:
-        keep.update(t=t, x=x, y=y, vd=vd, x_base=s0[0] if s0 else None, x_ext=s1[0] if s1 else None,
-                    cycles=c, fn=fn, ntr=ntr)
+        keep.update(t=t, x=x, y=y, vd=vd, x_base=x_base, x_ext=x_ext, cycles=c, fn=fn, ntr=ntr)
     feats = {"record": meas[0]}
     return Diagnosis(effect=effect, scores=scores, statistics={k: float(v) for k, v in st.items()}, baseline=base,
                      extended=ext if effect != "none" else base, baseline_error=float(e0), extended_error=float(e1),
@@ -675,9 +646,8 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
             c = cycles(t, arr, fn, keep["vd"])
         except LiengInputError:
             continue
-        idx, _ = _slip_samples(c, t, keep["vd"])
-        F = arr + c.a / (2 * math.pi * fn) ** 2
-        ax.plot(keep["vd"][idx] - c.v[idx], F[idx], ".", ms=2, label=lab, color=kw["color"])
+        idx, F, _ = _slip_design(c, t, arr, keep["vd"], fn)
+        ax.plot(keep["vd"][idx] - c.v[idx], F, ".", ms=2, label=lab, color=kw["color"])
     ax.set_xlabel("sliding velocity v0 - x' (mm/s)")
     ax.set_ylabel("friction / stiffness F = x + x''/wn^2 (mm)")
     ax.set_title("Characteristic during slip (reverse construction): a loop means two branches")

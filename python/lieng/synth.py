@@ -43,7 +43,7 @@ smaller than the stick-slip (App. 2).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 
 import numpy as np
 

@@ -38,10 +38,8 @@ as calibrated and corrected.
 
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Sequence
 
 import numpy as np
@@ -49,10 +47,13 @@ import numpy as np
 from . import _core
 from .cards import Card, card_location, read_cards, write_cards
 from .errors import LiengInputError
+from .table import read_columns
 
 __all__ = ["Deck", "TrcResult", "trc", "calibrate", "belfit", "lsqfit", "read_csv", "CSV_COLUMNS",
            "NMIN", "NMAX_DECK", "origin_fit"]
 
+#: g in mm/s**2, the 9810. of loop 540 (AMT = XX*OMNH**2/9810.; g_mm in fortran/trc.f90).
+G_MM = 9810.0
 #: BELFIT needs 2M-1 = 9 points; the issue and the origin search want 10.
 NMIN = 10
 #: "TRACE DESCRIPTION WITH 200 POINTS AT MAXIMUM" (the listing's comment).
@@ -324,17 +325,7 @@ def _check_trace(t, x, xn, where):
                               f"must increase")
 
 
-def _first_crossing(v, sign):
-    """The listing's loop 52 (sign = -1) / 520 (sign = +1): the first 0-based
-    i, 1 <= i <= n-5, with sign*v[i] < 0 and sign*v[i+1..i+4] > 0."""
-    n = v.size
-    for i in range(1, n - 4):
-        if sign * v[i] < 0 and np.all(sign * v[i + 1 : i + 5] > 0):
-            return i
-    return None
-
-
-def origin_fit(xx_raw, yy, vel, sign, lo=0.1, hi=0.4, half=12):
+def origin_fit(xx_raw, yy, vel, i, lo=0.1, hi=0.4, half=12):
     """A modern estimate of the origin (EL or ELN), beside the listing's.
 
     The listing interpolates the characteristic linearly between the two
@@ -354,18 +345,16 @@ def origin_fit(xx_raw, yy, vel, sign, lo=0.1, hi=0.4, half=12):
         The unshifted characteristic (XX before loop 540) and its velocity.
     vel : ndarray
         The velocity whose sign change marks the origin (VLN or VNLN).
-    sign : {-1, +1}
-        -1: + to - (EL); +1: - to + (ELN).
+    i : int
+        0-based index of the sign change, as the listing's loop 52 (EL) or
+        520 (ELN) finds it in the compiled core.
 
     Returns
     -------
     float
-        The origin, or NaN when there is no sign change or fewer than two
-        usable points on each side.
+        The origin, or NaN when there are fewer than two usable points on
+        each side.
     """
-    i = _first_crossing(vel, sign)
-    if i is None:
-        return math.nan
     n = vel.size
     s = float(np.max(np.abs(vel)))
     j = np.arange(max(1, i - half), min(n - 1, i + half + 1))
@@ -424,29 +413,29 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
     else:
         xn_arr = np.ones_like(x)
         omnv = 1.0
-    with np.errstate(all="ignore"):
-        (xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, xlnr, xnlnr, amt, amtn, el, eln, has_eln, status,
-         where) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
     if origin not in ("listing", "fit"):
         raise LiengInputError(f"{_where}: origin must be 'listing' or 'fit', not {origin!r}")
+    with np.errstate(all="ignore"):
+        (xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln,
+         status, where) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
     if status != 0:
         raise _err_status(int(status), int(where), _where)
     el_listing, eln_listing = float(el), float(eln) if has_eln else math.nan
     if origin == "fit":
-        el_new = origin_fit(xx + el, yy, vln, -1)
+        el_new = origin_fit(xx + el, yy, vln, int(iel) - 1)
         if not math.isfinite(el_new):
             raise LiengInputError(f"{_where}: origin 'fit': fewer than two constructed points on each side of "
                                   f"the velocity sign change with 0.1-0.4 of the largest |VLN|")
         xx = xx + el - el_new
         xlnr = xlnr + el - el_new
-        amt = xx * omnh**2 / 9810.0
+        amt = xx * omnh**2 / G_MM
         el = el_new
         if has_normal and has_eln:
-            eln_new = origin_fit(xxn + eln, yyn, vnln, +1)
+            eln_new = origin_fit(xxn + eln, yyn, vnln, int(ieln) - 1)
             if math.isfinite(eln_new):
                 xxn = xxn + eln - eln_new
                 xnlnr = xnlnr + eln - eln_new
-                amtn = xxn * omnv**2 / 9810.0
+                amtn = xxn * omnv**2 / G_MM
                 eln = eln_new
     if not has_normal:
         nan = np.full_like(x, np.nan)
@@ -507,34 +496,5 @@ def read_csv(path):
 
     Raises LiengInputError naming the row and column of any bad value.
     """
-    p = Path(path)
-    try:
-        fh = open(p, newline="", encoding="utf-8")
-    except FileNotFoundError:
-        raise LiengInputError(f"{path}: no such file") from None
-    except IsADirectoryError:
-        raise LiengInputError(f"{path}: is a directory") from None
-    with fh:
-        rows = list(csv.reader(fh))
-    if not rows:
-        raise LiengInputError(f"{path}: empty file: expected a header t,x[,xn]")
-    header = [h.strip() for h in rows[0]]
-    for need in ("t", "x"):
-        if need not in header:
-            raise LiengInputError(f"{path}: no column {need!r} in the header (expected t,x[,xn]: s, mm, mm)")
-    cols = {name: header.index(name) for name in ("t", "x", "xn") if name in header}
-    data = {name: [] for name in cols}
-    for r, row in enumerate(rows[1:], start=2):
-        if not row or all(not c.strip() for c in row):
-            continue
-        for name, c in cols.items():
-            try:
-                val = float(row[c])
-            except (IndexError, ValueError):
-                cell = row[c] if c < len(row) else ""
-                raise LiengInputError(f"{path}: line {r}, column {name}: {cell.strip()!r} is not a number") from None
-            if not math.isfinite(val):
-                raise LiengInputError(f"{path}: line {r}, column {name}: {val} is not a finite number")
-            data[name].append(val)
-    arrs = {k: np.array(v) for k, v in data.items()}
+    arrs = read_columns(path, ("t", "x"), ("xn",), "t,x[,xn]: s, mm, mm")
     return arrs["t"], arrs["x"], arrs.get("xn")
