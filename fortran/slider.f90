@@ -1,7 +1,9 @@
 !> The generalised 1-DoF stick-slip slider of `lieng diagnose`: the thesis's
 !> model (a dynamometer of natural frequency wn on a belt, one friction
 !> characteristic, constant load and drive) with the extensions the
-!> diagnosis can switch on: a load factor L(t) (load variation, triggering),
+!> diagnosis can switch on: a load factor L(t) + kx (x - xref) (load
+!> variation through an exogenous record or through the rig's coupling of
+!> the normal force to the displacement, triggering),
 !> a drive velocity vd(t) (drive modulation), a static limit growing with the
 !> stick time (ageing) and two kinetic branches (twin mechanism).
 !>
@@ -21,8 +23,8 @@ module slider
 
 contains
 
-   subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, fk, ds, vs, delta, age_a, age_tau, x0, &
-                         x, v, state, status)
+   subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, fk, ds, vs, delta, age_a, age_tau, kx, xref, &
+                         x0, x, v, state, status)
       integer, intent(in) :: n                !< number of output samples (>= 2)
       real(wp), intent(in) :: dt              !< output sample interval (s), > 0
       integer, intent(in) :: nsub             !< sub-steps per sample (>= 1)
@@ -37,6 +39,8 @@ contains
       real(wp), intent(in) :: delta           !< decelerating minus accelerating branch (mm)
       real(wp), intent(in) :: age_a           !< ageing: relative growth per e-fold of stick time
       real(wp), intent(in) :: age_tau         !< ageing time scale (s), > 0
+      real(wp), intent(in) :: kx              !< load factor per mm of displacement (coupling)
+      real(wp), intent(in) :: xref            !< displacement at which the coupling adds nothing (mm)
       real(wp), intent(in) :: x0              !< initial displacement (mm), starts stuck
       real(wp), intent(out) :: x(n)           !< displacement (mm)
       real(wp), intent(out) :: v(n)           !< velocity (mm/s)
@@ -67,6 +71,7 @@ contains
             w = (k - 0.5_wp) / nsub
             vdr = (1.0_wp - w) * vd(i) + w * vd(i + 1)
             lfac = (1.0_wp - w) * load(i) + w * load(i + 1)
+            if (kx /= 0.0_wp) lfac = max(lfac + kx * (xs - xref), 0.05_wp)
             if (stick) then
                vs_ = vdr
                xs = xs + h * vdr

@@ -253,11 +253,10 @@ def _lowpass(y, dt, fcut):
     return np.fft.irfft(Y, y.size) + y.mean()
 
 
-def _spectral_line(sig, dt, fmin, f0):
-    """The strongest line above fmin that is not a harmonic of f0 (within
+def _spectral_line(sig, dt, fmin, f0=None):
+    """The strongest line above fmin, with f0 not a harmonic of f0 (within
     one frequency bin): (frequency, amplitude, phase) from a Hann-windowed
-    FFT of ``sig``, which should already be free of the stick-slip-locked
-    part (see :func:`statistics`)."""
+    FFT of ``sig``."""
     s = sig - np.mean(sig)
     n = s.size
     w = np.hanning(n)
@@ -265,8 +264,8 @@ def _spectral_line(sig, dt, fmin, f0):
     f = np.fft.rfftfreq(n, dt)
     amp = 2 * np.abs(S) / w.sum()
     ok = (f > fmin) & (f < 0.4 / dt)
-    harm = np.abs(f / f0 - np.round(f / f0)) * f0 < 1.0 / (n * dt)
-    ok &= ~harm
+    if f0 is not None:
+        ok &= ~(np.abs(f / f0 - np.round(f / f0)) * f0 < 1.0 / (n * dt))
     if not np.any(ok):
         return 0.0, 0.0, 0.0
     k = int(np.flatnonzero(ok)[np.argmax(amp[ok])])
@@ -280,8 +279,22 @@ def statistics(t, x, y, vd, fn) -> tuple[dict, dict]:
     c = cycles(t, x, fn, vd)
     amp = c.amplitude
     st = {}
-    # reverse construction during slip
+    # triggering line: the strongest line above 2 fn in the part of y not
+    # locked to the stick-slip (y less its regression on the smoothed motion),
+    # or, without y, in x away from the stick-slip's harmonics
+    f0 = 1.0 / float(np.mean(c.period))
+    if y is not None:
+        xs = _smooth(x, dt, fn)
+        A = np.column_stack([np.ones_like(xs), xs, c.v])
+        r = y - A @ np.linalg.lstsq(A, y, rcond=None)[0]
+        f_tr, a_tr, _ = _spectral_line(r, dt, 2.0 * fn)
+    else:
+        f_tr, a_tr, _ = _spectral_line(x, dt, 2.0 * fn, f0)
+    st["triggering"] = a_tr / amp
+    # reverse construction during slip, with the triggering line's load
+    # modulation as regressors so that it cannot pass for a load variation
     idx, F, cols = _slip_design(c, t, x, vd, fn)
+    cols += [_sin(t[idx], f_tr, 0.0), np.cos(2 * math.pi * f_tr * t[idx])]
     ylow = None
     if y is not None:
         ylow = _lowpass(y, dt, 1.5 * fn)
@@ -291,7 +304,7 @@ def statistics(t, x, y, vd, fn) -> tuple[dict, dict]:
     A = np.column_stack(cols)
     coef = np.linalg.lstsq(A, F, rcond=None)[0]
     st["twin_branch"] = float(coef[3]) / amp
-    st["load_variation"] = abs(float(coef[5])) / amp if len(coef) > 5 else 0.0
+    st["load_variation"] = abs(float(coef[7])) / amp if len(coef) > 7 else 0.0
     # ageing: peak against log drive during the stick
     vst = _stick_drive(c, vd)
     pk = c.peak[1:1 + vst.size]
@@ -300,18 +313,6 @@ def statistics(t, x, y, vd, fn) -> tuple[dict, dict]:
         st["static_ageing"] = float(-slope * np.ptp(np.log(vst))) / amp
     else:
         st["static_ageing"] = 0.0
-    # triggering line
-    f0 = 1.0 / float(np.mean(c.period))
-    # the part of y (or x) not locked to the stick-slip: y less its regression
-    # on the smoothed motion; the line is searched above 2 fn
-    if y is not None:
-        xs = _smooth(x, dt, fn)
-        A = np.column_stack([np.ones_like(xs), xs, c.v])
-        r = y - A @ np.linalg.lstsq(A, y, rcond=None)[0]
-    else:
-        r = x
-    f_tr, a_tr, _ = _spectral_line(r, dt, 2.0 * fn, f0)
-    st["triggering"] = a_tr / amp
     # stick velocity
     ratios = np.array([np.polyfit(t[seg], x[seg], 1)[0] / np.mean(vd[seg]) for seg in _stick_segments(c)])
     st["drive_modulation"] = float(np.std(ratios) / abs(np.mean(ratios))) if ratios.size >= 3 else 0.0
@@ -323,7 +324,8 @@ def statistics(t, x, y, vd, fn) -> tuple[dict, dict]:
 
 @dataclass
 class Params:
-    """The slider's parameters (mm, s)."""
+    """The slider's parameters (mm, s), and the model of the recorded normal
+    channel y (the part locked to the motion, plus the triggering line)."""
 
     fs: float
     fk: float
@@ -333,41 +335,68 @@ class Params:
     delta: float = 0.0
     age_a: float = 0.0
     age_tau: float = 0.01
-    load_k: float = 0.0            # load = 1 + load_k * (ylow - mean)
+    load_k: float = 0.0            # exogenous: load = 1 + load_k * (ylow - mean), ylow measured
+    load_kx: float = 0.0           # coupled: load += load_kx * (x - load_xref), x simulated
+    load_xref: float = 0.0
     trig_eps: float = 0.0          # load *= 1 + eps sin(2 pi f t + ph)
     trig_f: float = 0.0
     trig_ph: float = 0.0
+    trig_ax: float = 0.0           # superposed on x: ax sin(2 pi f t + phx) (MLIEN's XTRI)
+    trig_phx: float = 0.0
+    trig_ay: float = 0.0           # superposed on y: ay sin(2 pi f t + phy)
+    trig_phy: float = 0.0
     drv_a: float = 0.0             # vd *= 1 + a sin(2 pi f t + ph)
     drv_f: float = 0.0
     drv_ph: float = 0.0
+    y_c: tuple = (0.0, 0.0, 0.0)   # y = c0 + c1 x + c2 x'  (the locked part of the normal channel)
 
     def to_json(self) -> dict:
-        return {k: float(v) for k, v in self.__dict__.items()}
+        d = {k: float(v) for k, v in self.__dict__.items() if k != "y_c"}
+        d.update(y_c0=float(self.y_c[0]), y_cx=float(self.y_c[1]), y_cv=float(self.y_c[2]))
+        return d
+
+    def copy(self, **kw) -> "Params":
+        q = Params(**self.__dict__)
+        for k, v in kw.items():
+            setattr(q, k, v)
+        return q
 
 
-def simulate(p: Params, t, vd, fn, ylow=None, x0=0.0):
+def _sin(t, f, ph):
+    return np.sin(2 * math.pi * f * t + ph)
+
+
+def simulate(p: Params, t, vd, fn, ylow=None, x0=0.0, with_y=False):
     """Simulate the slider on the record's time grid with the compiled core.
 
-    Returns x, v, state (1 stick, 0 slip)."""
+    Returns x, v, state (1 stick, 0 slip) and, with ``with_y``, the modelled
+    normal channel y (after x, v)."""
     t = np.asarray(t, float)
     dt = float(t[1] - t[0])
     vdd = np.asarray(vd, float).copy()
     if p.drv_a:
-        vdd = vdd * (1.0 + p.drv_a * np.sin(2 * math.pi * p.drv_f * t + p.drv_ph))
+        vdd = vdd * (1.0 + p.drv_a * _sin(t, p.drv_f, p.drv_ph))
     load = np.ones_like(t)
     if p.load_k and ylow is not None:
         load = load + p.load_k * (ylow - np.mean(ylow))
     if p.trig_eps:
-        load = load * (1.0 + p.trig_eps * np.sin(2 * math.pi * p.trig_f * t + p.trig_ph))
+        load = load * (1.0 + p.trig_eps * _sin(t, p.trig_f, p.trig_ph))
     if np.any(load <= 0):
         load = np.maximum(load, 0.05)
     wn = 2 * math.pi * fn
     nsub = max(4, int(math.ceil(dt * wn / 0.05)))
     x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, p.fk, p.ds, p.vs, p.delta,
-                                            p.age_a, p.age_tau, x0)
+                                            p.age_a, p.age_tau, p.load_kx, p.load_xref, x0)
     if status != 0:
         raise LiengInputError(f"the slider simulation failed (status {status}): check --fn and the record's units")
-    return x, v, state
+    if p.trig_ax:
+        x = x + p.trig_ax * _sin(t, p.trig_f, p.trig_phx)
+    if not with_y:
+        return x, v, state
+    y = p.y_c[0] + p.y_c[1] * x + p.y_c[2] * v
+    if p.trig_ay:
+        y = y + p.trig_ay * _sin(t, p.trig_f, p.trig_phy)
+    return x, v, state, y
 
 
 # ------------------------------------------------------------------ errors
@@ -384,22 +413,20 @@ def _features(t, x, y, vd, fn, sel):
     return {k: float(v) for k, v in f.items()}, st, aux
 
 
-def _line_amp(x, dt, f):
-    """Amplitude of x at frequency f (least squares on a sine and cosine)."""
-    tt = np.arange(x.size) * dt
-    A = np.column_stack([np.ones(x.size), tt, np.sin(2 * math.pi * f * tt), np.cos(2 * math.pi * f * tt)])
-    c = np.linalg.lstsq(A, x, rcond=None)[0]
-    return float(math.hypot(c[2], c[3]))
+def _line_fit(sig, t, f):
+    """Amplitude and phase of sig at frequency f (least squares on a sine and
+    cosine, with a mean and a trend), as a sin(2 pi f t + ph)."""
+    A = np.column_stack([np.ones(t.size), t - t.mean(), _sin(t, f, 0.0), np.cos(2 * math.pi * f * t)])
+    c = np.linalg.lstsq(A, sig, rcond=None)[0]
+    return float(math.hypot(c[2], c[3])), float(math.atan2(c[3], c[2]))
 
 
-def feature_error(meas, sim, amp, period, line=None) -> float:
-    """The documented error (module docstring); ``line`` = (measured, simulated)
-    amplitude of x at a named triggering line, compared relatively."""
+def feature_error(meas, sim, amp, period) -> float:
+    """The documented error (module docstring) between the features and
+    statistics of the record, ``meas``, and of a simulation, ``sim``."""
     fm, sm = meas
     fs_, ss = sim
     d = []
-    if line is not None:
-        d.append((line[0] - line[1]) / max(line[0], 1e-12))
     for k, v in fm.items():
         scale = period if k.startswith(("period", "rise")) else amp
         d.append((v - fs_[k]) / scale)
@@ -428,6 +455,36 @@ def _fit_fk(p: Params, t, vd, fn, target_trough, ylow=None, it=6):
     return p
 
 
+class _Judge:
+    """The record's features on a slice, and the error of a simulation there."""
+
+    def __init__(self, t, x, y, vd, fn, ylow, sel):
+        self.t, self.y, self.vd, self.fn, self.ylow, self.sel = t, y, vd, fn, ylow, sel
+        self.meas = _features(t, x, y, vd, fn, sel)
+        self.amp = self.meas[2]["cycles"].amplitude
+        self.period = self.meas[0]["period_mean"]
+
+    def sim(self, p: Params):
+        """The simulated record (x, y or None)."""
+        xs, _, _, ys = simulate(p, self.t, self.vd, self.fn, self.ylow, with_y=True)
+        return xs, (ys if self.y is not None else None)
+
+    def error(self, p: Params) -> tuple[float, np.ndarray]:
+        xs, ys = self.sim(p)
+        try:
+            sim = _features(self.t, xs, ys, self.vd, self.fn, self.sel)
+        except LiengInputError:
+            return float("inf"), xs
+        return feature_error(self.meas[:2], sim[:2], self.amp, self.period), xs
+
+
+def _y_locked(t, x, y, fn, c: Cycles):
+    """Coefficients of the part of y locked to the motion: y ~ c0 + c1 x + c2 x'."""
+    dt = float(t[1] - t[0])
+    A = np.column_stack([np.ones_like(x), _smooth(x, dt, fn), c.v])
+    return tuple(float(v) for v in np.linalg.lstsq(A, y, rcond=None)[0])
+
+
 @dataclass
 class Diagnosis:
     effect: str
@@ -440,13 +497,91 @@ class Diagnosis:
     gain: float
     features: dict = field(default_factory=dict)
     reason: str = ""
+    baseline_statistics: dict = field(default_factory=dict)
 
     def to_json(self) -> dict:
         fitted = {"baseline": self.baseline.to_json(), "extended": self.extended.to_json()}
         return {"effect": self.effect, "scores": {k: round(v, 6) for k, v in self.scores.items()},
                 "baseline_error": self.baseline_error, "extended_error": self.extended_error, "gain": self.gain,
-                "metric": METRIC, "fitted": fitted, "statistics": self.statistics, "thresholds": THRESHOLDS,
+                "metric": METRIC, "fitted": fitted, "statistics": self.statistics,
+                "baseline_statistics": self.baseline_statistics, "thresholds": THRESHOLDS,
                 "features": self.features, "reason": self.reason}
+
+
+def _candidates(effect, base: Params, st, aux, t, x, y, vd, fn, ylow, tr):
+    """Extended models for ``effect``, fitted on the training samples ``tr``:
+    the estimate the evidence gives and a few variants of it (the training
+    error picks one)."""
+    ctr = cycles(t[tr], x[tr], fn, vd[tr])
+    target = float(np.mean(ctr.trough))
+    amp = aux["amp"]
+    out = []
+
+    def fk(p, **kw):
+        return _fit_fk(p, t[tr], vd[tr], fn, target, **kw)
+
+    if effect == "twin_branch":
+        d0 = 2.0 * st["twin_branch"] * amp
+        for s in (0.6, 1.0, 1.5):
+            out.append(fk(base.copy(delta=s * d0)))
+    elif effect == "load_variation":
+        yl = ylow[tr]
+        idx, F, cols = _slip_design(ctr, t[tr], x[tr], vd[tr], fn)
+        A = np.column_stack(cols + [yl[idx] - np.mean(yl)])
+        kf = float(np.linalg.lstsq(A, F, rcond=None)[0][5]) / max(base.fk, 1e-12)   # load per mm of y
+        for s in (0.7, 1.0, 1.4):
+            k = s * kf
+            # exogenous: the recorded normal channel drives the load
+            ld = 1.0 + k * (yl[ctr.peak_i] - np.mean(yl))
+            out.append(fk(base.copy(load_k=k, fs=float(np.median(ctr.peak / ld))), ylow=yl))
+            # coupled: the load follows the simulated displacement through y's locked part
+            kx, xref = k * base.y_c[1], float(np.mean(x[tr]))
+            ld = 1.0 + kx * (ctr.peak - xref)
+            if np.all(ld > 0.05):
+                out.append(fk(base.copy(load_kx=kx, load_xref=xref, fs=float(np.median(ctr.peak / ld)))))
+    elif effect == "static_ageing":
+        vst = _stick_drive(ctr, vd[tr])
+        pk = ctr.peak[1:1 + vst.size]
+        ts = (pk - np.mean(ctr.trough)) / vst            # stick time: rise distance over drive
+        b, a0 = np.polyfit(np.log(ts), pk, 1)            # peak = FS (1 + A ln(1 + ts/tau)) ~ FS + FS A ln(ts/tau)
+        for ftau in (0.01, 0.1, 0.5):
+            tau = ftau * float(np.min(ts))
+            fs = max(a0 + b * math.log(tau), 0.2 * base.fs)
+            for s in (0.8, 1.0, 1.25):
+                out.append(fk(base.copy(age_tau=tau, fs=fs, age_a=s * b / fs)))
+    elif effect == "triggering":
+        f_tr = aux["f_tr"]
+        tt = t[tr]
+        idx, F, cols = _slip_design(ctr, tt, x[tr], vd[tr], fn)
+        A = np.column_stack(cols + [_sin(tt[idx], f_tr, 0.0), np.cos(2 * math.pi * f_tr * tt[idx])])
+        coef = np.linalg.lstsq(A, F, rcond=None)[0]
+        eps = float(math.hypot(coef[5], coef[6])) / max(base.fk, 1e-12)
+        ph = float(math.atan2(coef[6], coef[5]))
+        dt = float(t[1] - t[0])
+        ax_, phx = _line_fit(x[tr] - _lowpass(x[tr], dt, 2 * fn), tt, f_tr)
+        kw = dict(trig_f=f_tr, trig_ax=ax_, trig_phx=phx)
+        if y is not None:
+            ay, phy = _line_fit(y[tr] - _lowpass(y[tr], dt, 2 * fn), tt, f_tr)
+            kw.update(trig_ay=ay, trig_phy=phy)
+        for s in (0.0, 0.5, 1.0):
+            out.append(fk(base.copy(trig_eps=s * eps, trig_ph=ph, **kw)))
+    elif effect == "drive_modulation":
+        segs = list(_stick_segments(ctr))
+        mids = np.array([np.mean(t[tr][seg]) for seg in segs])
+        rat = np.array([np.polyfit(t[tr][seg], x[tr][seg], 1)[0] / np.mean(vd[tr][seg]) for seg in segs])
+        f_ss = 1.0 / np.mean(ctr.period)
+        best_fit = None
+        for f in np.linspace(0.05 * f_ss, 0.95 * f_ss, 400):
+            A = np.column_stack([np.ones(mids.size), _sin(mids, f, 0.0), np.cos(2 * math.pi * f * mids)])
+            coef = np.linalg.lstsq(A, rat, rcond=None)[0]
+            r = float(np.sum((A @ coef - rat) ** 2))
+            if best_fit is None or r < best_fit[0]:
+                best_fit = (r, f, coef)
+        _, f, coef = best_fit
+        for s in (0.8, 1.0, 1.2):
+            out.append(fk(base.copy(drv_f=float(f), drv_a=s * float(math.hypot(coef[1], coef[2]) / coef[0]),
+                                    drv_ph=float(math.atan2(coef[2], coef[1])))))
+    return out
 
 
 def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Diagnosis:
@@ -478,8 +613,25 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
     vd = rec.v0 if rec.v0 is not None else np.full_like(t, rec.v0_nominal)
     st, aux = statistics(t, x, y, vd, fn)
     c = aux["cycles"]
-    amp = aux["amp"]
-    scores = {k: abs(st[k]) / THRESHOLDS[k] for k in EFFECTS}
+    ylow = aux["ylow"]
+
+    # the baseline, fitted on the training part
+    ntr = int(TRAIN * t.size)
+    tr = slice(0, ntr)
+    ctr = cycles(t[tr], x[tr], fn, vd[tr])
+    fs = float(np.median(ctr.peak))
+    base = Params(fs=fs, fk=0.5 * (float(np.median(ctr.trough)) + fs))
+    if y is not None:
+        base.y_c = _y_locked(t[tr], x[tr], y[tr], fn, ctr)
+    base = _fit_fk(base, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
+
+    # the evidence: what the record shows and the baseline does not
+    xb, _, _, yb = simulate(base, t, vd, fn, with_y=True)
+    try:
+        st_base, _ = statistics(t, xb, yb if y is not None else None, vd, fn)
+    except LiengInputError:
+        st_base = {k: 0.0 for k in EFFECTS}
+    scores = {k: abs(st[k] - st_base[k]) / THRESHOLDS[k] for k in EFFECTS}
     if y is None:
         scores["load_variation"] = 0.0
     best = max(scores, key=scores.get)
@@ -488,100 +640,26 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
               f"every score below 1 (largest: {best}, {scores[best]:.2f}): the baseline explains the record "
               f"within its noise")
 
-    ntr = int(TRAIN * t.size)
-    tr = slice(0, ntr)
-    ylow = aux["ylow"]
-    # baseline on the training part
-    ctr = cycles(t[tr], x[tr], fn, vd[tr])
-    fs = float(np.median(ctr.peak))
-    fk0 = 0.5 * (float(np.median(ctr.trough)) + fs)
-    base = Params(fs=fs, fk=fk0)
-    base = _fit_fk(base, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
-    ext = Params(**base.__dict__)
-    if effect == "twin_branch":
-        ext.delta = 2.0 * st["twin_branch"] * amp
-        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
-    elif effect == "load_variation":
-        yl = ylow[tr]
-        idx, F, cols = _slip_design(ctr, t[tr], x[tr], vd[tr], fn)
-        A = np.column_stack(cols + [yl[idx] - np.mean(yl)])
-        coef = np.linalg.lstsq(A, F, rcond=None)[0]
-        ext.load_k = float(coef[5]) / max(base.fk, 1e-12)
-        # the static limit follows the load too: FS is the peak over the load at the peak
-        ld = 1.0 + ext.load_k * (yl[ctr.peak_i] - np.mean(yl))
-        ext.fs = float(np.median(ctr.peak / ld))
-        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)), ylow=yl)
-    elif effect == "static_ageing":
-        vst = _stick_drive(ctr, vd[tr])
-        pk = ctr.peak[1:1 + vst.size]
-        # stick time ~ rise distance / drive; FS (1 + a ln(1 + ts/tau)) fitted as a line in ln(ts)
-        ts = (pk - np.mean(ctr.trough)) / vst
-        b, a0 = np.polyfit(np.log(ts), pk, 1)
-        ext.age_tau = 0.01 * float(np.min(ts))
-        # peak = FS (1 + A ln(1 + ts/tau)) ~ FS + FS A ln(ts/tau): FS A = b
-        base_level = a0 + b * math.log(ext.age_tau)
-        ext.fs = max(base_level, 0.2 * fs)
-        ext.age_a = b / ext.fs
-        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
-    elif effect == "triggering":
-        f_tr = aux["f_tr"]
-        ext.trig_f = f_tr
-        # the load modulation from the friction it leaves in slip: regress F on sin/cos at f_tr
-        idx, F, cols = _slip_design(ctr, t[tr], x[tr], vd[tr], fn)
-        tt = t[tr][idx]
-        A = np.column_stack(cols + [np.sin(2 * math.pi * f_tr * tt), np.cos(2 * math.pi * f_tr * tt)])
-        coef = np.linalg.lstsq(A, F, rcond=None)[0]
-        ext.trig_eps = float(math.hypot(coef[5], coef[6])) / max(base.fk, 1e-12)
-        ext.trig_ph = float(math.atan2(coef[6], coef[5]))
-        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
-    elif effect == "drive_modulation":
-        segs = list(_stick_segments(ctr))
-        mids = np.array([np.mean(t[tr][seg]) for seg in segs])
-        rat = np.array([np.polyfit(t[tr][seg], x[tr][seg], 1)[0] / np.mean(vd[tr][seg]) for seg in segs])
-        f_ss = 1.0 / np.mean(ctr.period)
-        best_fit = None
-        for f in np.linspace(0.05 * f_ss, 0.95 * f_ss, 400):
-            A = np.column_stack([np.ones(mids.size), np.sin(2 * math.pi * f * mids), np.cos(2 * math.pi * f * mids)])
-            coef = np.linalg.lstsq(A, rat, rcond=None)[0]
-            r = float(np.sum((A @ coef - rat) ** 2))
-            if best_fit is None or r < best_fit[0]:
-                best_fit = (r, f, coef)
-        _, f, coef = best_fit
-        ext.drv_f = float(f)
-        ext.drv_a = float(math.hypot(coef[1], coef[2]) / coef[0])
-        ext.drv_ph = float(math.atan2(coef[2], coef[1]))
-        ext = _fit_fk(ext, t[tr], vd[tr], fn, float(np.mean(ctr.trough)))
+    # the extension: candidates fitted on the training part, the best on it kept
+    train = _Judge(t, x, y, vd, fn, ylow, tr)
+    ext = base
+    if effect != "none":
+        cands = _candidates(effect, base, st, aux, t, x, y, vd, fn, ylow, tr)
+        errs = [train.error(p)[0] for p in cands]
+        if cands and np.isfinite(min(errs)):
+            ext = cands[int(np.argmin(errs))]
 
-    # errors on the last 30 %
-    te = slice(ntr, t.size)
-    meas = _features(t, x, y, vd, fn, te)
-    amp_te = meas[2]["cycles"].amplitude
-    per_te = meas[0]["period_mean"]
-
-    def line_amp(arr):
-        """x's amplitude at the named triggering line (the metric's extra term)."""
-        return _line_amp(arr[te] - _lowpass(arr[te], dt, 2 * fn), dt, aux["f_tr"])
-
-    line_meas = line_amp(x) if effect == "triggering" else None
-
-    def err(p):
-        xs, _, _ = simulate(p, t, vd, fn, ylow)
-        try:
-            sim = _features(t, xs, y, vd, fn, te)
-        except LiengInputError:
-            return float("inf"), xs
-        line = None if line_meas is None else (line_meas, line_amp(xs))
-        return feature_error(meas[:2], sim[:2], amp_te, per_te, line), xs
-
-    e0, x_base = err(base)
-    e1, x_ext = (e0, x_base) if effect == "none" else err(ext)
+    # the gain on the last 30 %
+    test = _Judge(t, x, y, vd, fn, ylow, slice(ntr, t.size))
+    e0, x_base = test.error(base)
+    e1, x_ext = (e0, x_base) if effect == "none" else test.error(ext)
     gain = 0.0 if effect == "none" or not math.isfinite(e0) or e0 == 0 else 1.0 - e1 / e0
     if keep is not None:
         keep.update(t=t, x=x, y=y, vd=vd, x_base=x_base, x_ext=x_ext, cycles=c, fn=fn, ntr=ntr)
-    feats = {"record": meas[0]}
+    feats = {"record": test.meas[0]}
     return Diagnosis(effect=effect, scores=scores, statistics={k: float(v) for k, v in st.items()}, baseline=base,
-                     extended=ext if effect != "none" else base, baseline_error=float(e0), extended_error=float(e1),
-                     gain=float(gain), features=feats, reason=reason)
+                     extended=ext, baseline_error=float(e0), extended_error=float(e1), gain=float(gain),
+                     features=feats, reason=reason, baseline_statistics={k: float(v) for k, v in st_base.items()})
 
 
 # ------------------------------------------------------------------ outputs

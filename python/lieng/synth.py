@@ -134,9 +134,14 @@ def synthesize(effect: str = "none", seed: int | None = None, *, cycles: int = 1
     cy, y0, a_ny = 0.0, 1.0, 0.0
     steps = None
     if effect == "load_variation":
-        ky = k * float(g.uniform(1.0, 2.0))            # per mm of y
         cy = float(g.uniform(0.3, 0.6))                # y follows x through the coupling
+        # per mm of y; ky cy fs (the load's rise over the static limit) from 0.15 to 0.4
+        ky = k * float(g.uniform(0.15, 0.4)) / (cy * fs)
         truth.update(ky=ky, cy=cy)
+        # the static limit is reached at fs / (1 - ky cy fs): longer sticks
+        period_est *= 1.0 / max(1.0 - ky * cy * fs, 0.2)
+        t_end = cycles * period_est + 0.5 / fn
+        n = int(t_end * fsamp)
     elif effect == "twin_branch":
         dtw = k * fs * float(g.uniform(0.12, 0.22))    # decelerating branch above the accelerating one
         truth.update(delta=dtw)
