@@ -149,11 +149,14 @@ def synthesize(effect: str = "none", seed: int | None = None, *, cycles: int = 1
         a_age = k * float(g.uniform(0.10, 0.20))
         tau_age = float(g.uniform(0.005, 0.02))
         truth.update(a=a_age, tau=tau_age)
+    if effect == "static_ageing" or (effect == "none" and g.uniform() < 0.5):
+        # a drive stepping between velocities, recorded in a v0 column (for
+        # `none`: the same test programme without ageing)
         levels = v0 * np.array([0.35, 0.6, 1.0, 1.6])
         nseg = 6
         steps = (np.linspace(0.0, t_end, nseg + 1)[:-1], g.permutation(np.resize(levels, nseg)))
         period_est = (fs - (2 * fk - fs)) / levels.min() + 1.0 / fn
-    elif effect == "triggering":
+    if effect == "triggering":
         eps_tr = k * float(g.uniform(0.04, 0.08))
         f_tr = fn * float(g.uniform(3.3, 5.7))
         a_ny = 2 * (fs - fk) * float(g.uniform(0.04, 0.1))   # the normal oscillation (mm)
