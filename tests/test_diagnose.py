@@ -15,18 +15,52 @@ def run(rec):
     return diagnose(Record(t=rec.t, x=rec.x, y=rec.y, v0=rec.v0_col, v0_nominal=rec.v0), rec.fn)
 
 
-@pytest.mark.parametrize("effect", ["twin_branch", "drive_modulation", "load_variation", "triggering"])
+EFFECTS = ["load_variation", "twin_branch", "static_ageing", "triggering", "drive_modulation"]
+
+
+@pytest.mark.parametrize("effect", EFFECTS)
 def test_hidden_effect_is_named_with_gain(effect):
-    d = run(synthesize(effect, 1))
-    assert d.effect == effect
-    assert d.gain >= 0.3
+    """Six records with random parameters: the effect named with gain >= 0.3
+    on at least five (the issue's bar)."""
+    good = 0
+    for seed in range(6):
+        d = run(synthesize(effect, seed))
+        good += d.effect == effect and d.gain >= 0.3
+    assert good >= 5
 
 
-@pytest.mark.parametrize("seed", [0, 1, 2, 3])
-def test_no_false_alarm_on_effect_free_data(seed):
-    d = run(synthesize("none", seed))
-    assert d.effect == "none"
-    assert max(d.scores.values()) < 1.0
+@pytest.mark.parametrize("seeds", [range(0, 5), range(5, 10)])
+def test_no_false_alarm_on_effect_free_data(seeds):
+    """Effect-free records, half of them under a stepped drive with a v0
+    column: always `none`, every score below 1."""
+    for seed in seeds:
+        d = run(synthesize("none", seed))
+        assert d.effect == "none", (seed, d.scores)
+        assert max(d.scores.values()) < 1.0
+        assert d.gain == 0.0
+
+
+def test_generator_shares_no_code_with_the_diagnosis():
+    import ast
+    import inspect
+
+    import lieng.synth
+
+    tree = ast.parse(inspect.getsource(lieng.synth))
+    mods = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+    mods |= {n.module.split(".")[0] if n.module else "." for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
+    assert mods <= {"__future__", "math", "dataclasses", "numpy"}, mods
+
+
+def test_gain_is_measured_on_held_out_cycles():
+    """The extended model is fitted on the first 70 %: its fitted drive
+    modulation reproduces the generator's frequency, and the error it is
+    judged by comes from the rest of the record."""
+    rec = synthesize("drive_modulation", 2)
+    d = run(rec)
+    assert d.extended.drv_f == pytest.approx(rec.truth["f"], rel=0.1)
+    assert d.extended.drv_a == pytest.approx(rec.truth["a"], rel=0.35)
+    assert d.extended_error < d.baseline_error
 
 
 def test_cli_writes_json_report_and_plots(tmp_path, capsys):

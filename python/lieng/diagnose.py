@@ -12,9 +12,9 @@ The path (each step documented in ``report.md``):
    FK), constant load and drive.  FS is the median peak; FK is adjusted until
    the simulated trough matches.  Simulated with the compiled slider core
    (``fortran/slider.f90``).
-3. **Evidence** for each effect, a statistic with a threshold (score =
-   statistic / threshold; an effect is named when its score is >= 1, the
-   largest wins, else ``none``):
+3. **Evidence** for each effect, a statistic with a threshold (an effect
+   is named when its score is >= 1, else ``none``; see below for the
+   score and for several):
 
    * ``twin_branch``: the reverse construction gives the friction during slip,
      F = x + x''/wn**2 (the centre of curvature of the trajectory in the
@@ -37,6 +37,16 @@ The path (each step documented in ``report.md``):
    * ``drive_modulation``: the stick velocity (a line fitted to x in each
      stick) relative to the given drive; its coefficient of variation over
      the sticks, threshold 0.08.
+
+   Each statistic is computed on the record and on the baseline's simulation
+   of it (with the baseline's model of y: the part of y locked to x); the
+   score is their difference over the threshold, so that what the method
+   itself makes of a clean 1-DoF record (smoothing, trimming) is not
+   evidence.  The slip-shape statistics (twin, load) are read last: the
+   other effects change the shape of a slip too and leave traces there, the
+   converse is not true.  Within a group the largest score wins.  (When y
+   follows x, the branch step and y are nearly collinear in a slip: twin
+   and load can then both fire, and the larger score can be the wrong one.)
 4. **Extension** with the named effect, fitted on the first 70 % of the
    record.
 5. **Gain** on the last 30 %: the error is the RMS of normalised differences
@@ -66,6 +76,8 @@ __all__ = ["EFFECTS", "THRESHOLDS", "Record", "Diagnosis", "read_record", "cycle
 EFFECTS = ("load_variation", "twin_branch", "static_ageing", "triggering", "drive_modulation")
 THRESHOLDS = {"twin_branch": 0.04, "load_variation": 0.02, "static_ageing": 0.05, "triggering": 0.02,
               "drive_modulation": 0.08}
+#: the statistics read from the shape of the slips (see diagnose)
+SLIP_SHAPE = ("twin_branch", "load_variation")
 ZETA = 0.02
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences, record vs simulation, on the last 30 % of the record: mean and std "
@@ -128,12 +140,15 @@ def read_record(path, v0: float | None = None) -> Record:
 
 # ------------------------------------------------------------------ signal
 
+def _window(dt, fn) -> int:
+    """The Savitzky-Golay window (samples): a quarter of the natural period."""
+    return max(int(round(0.25 / fn / dt)) | 1, 7)
+
+
 def _smooth(x, dt, fn, deriv=0):
     from scipy.signal import savgol_filter
 
-    w = int(round(0.25 / fn / dt)) | 1
-    w = max(w, 7)
-    return savgol_filter(x, w, 3, deriv=deriv, delta=dt)
+    return savgol_filter(x, _window(dt, fn), 3, deriv=deriv, delta=dt)
 
 
 @dataclass
@@ -149,6 +164,8 @@ class Cycles:
     trough: np.ndarray
     period: np.ndarray
     rise: np.ndarray
+    #: samples of the smoothing window that gave v and a
+    win: int = 7
 
     @property
     def amplitude(self) -> float:
@@ -196,25 +213,35 @@ def cycles(t, x, fn, vd, min_cycles: int = 3) -> Cycles:
     trough = x[trough_i]
     period = np.diff(t[peak_i])
     rise = t[peak_i[1:]] - t[trough_i[:-1]]
-    return Cycles(peak_i, trough_i, slip, v, a, peak, trough, period, rise)
+    return Cycles(peak_i, trough_i, slip, v, a, peak, trough, period, rise, _window(dt, fn))
 
 
 # ------------------------------------------------------------------ evidence
 
-def _slip_samples(c: Cycles, t, vd):
+def _slip_sizes(c: Cycles, t, vd) -> list:
+    """The number of samples :func:`_slip_samples` takes from each slip."""
+    return [len(seg) for seg in _slip_samples(c, t, vd, split=True)[0]]
+
+
+def _slip_samples(c: Cycles, t, vd, split=False):
     """Samples inside slips (trimmed), with the branch: -0.5 before the
-    relative speed peaks, +0.5 after."""
+    relative speed peaks, +0.5 after (per slip with ``split``)."""
     idx, br = [], []
     for p, q in c.slip:
         n = q - p
         if n < 6:
             continue
-        lo, hi = p + max(1, n // 8), q - max(1, n // 8)
+        cut = max(1, n // 8)
+        lo, hi = p + cut, q - cut
+        if hi - lo < 4:
+            continue
         seg = np.arange(lo, hi)
         vr = vd[seg] - c.v[seg]
         kmax = int(np.argmax(vr))
         idx.append(seg)
         br.append(np.where(np.arange(seg.size) <= kmax, -0.5, 0.5))
+    if split:
+        return idx, br
     if not idx:
         return np.array([], int), np.array([])
     return np.concatenate(idx), np.concatenate(br)
@@ -298,16 +325,23 @@ def statistics(t, x, y, vd, fn, min_cycles: int = 3) -> tuple[dict, dict]:
     # modulation as regressors so that it cannot pass for a load variation
     idx, F, cols = _slip_design(c, t, x, vd, fn)
     cols += [_sin(t[idx], f_tr, 0.0), np.cos(2 * math.pi * f_tr * t[idx])]
-    ylow = None
+    ylow, ycol = None, None
     if y is not None:
         ylow = _lowpass(y, dt, 1.5 * fn)
         yl = ylow[idx] - ylow[idx].mean()
         if yl.std() > 1e-9 * (1.0 + abs(float(ylow.mean()))):
+            ycol = len(cols)
             cols.append(yl / yl.std())
+    # a cubic in the sliding velocity and one level per slip: the shape of a
+    # single-valued characteristic and slip-to-slip changes must not pass for
+    # a loop or for a load that follows y within the slip
+    cols.append((cols[1]) ** 3)
+    sl = np.repeat(np.arange(len(slip_sizes := _slip_sizes(c, t, vd))), slip_sizes)
+    cols += [(sl == k).astype(float) for k in range(1, len(slip_sizes))]
     A = np.column_stack(cols)
     coef = np.linalg.lstsq(A, F, rcond=None)[0]
     st["twin_branch"] = float(coef[3]) / amp
-    st["load_variation"] = abs(float(coef[7])) / amp if len(coef) > 7 else 0.0
+    st["load_variation"] = abs(float(coef[ycol])) / amp if ycol is not None else 0.0
     # ageing: peak against log drive during the stick
     vst = _stick_drive(c, vd)
     pk = c.peak[1:1 + vst.size]
@@ -649,10 +683,23 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
     if y is None:
         scores["load_variation"] = 0.0
     best = max(scores, key=scores.get)
-    effect = best if scores[best] >= 1.0 else "none"
-    reason = (f"{best}: score {scores[best]:.2f} >= 1" if effect != "none" else
-              f"every score below 1 (largest: {best}, {scores[best]:.2f}): the baseline explains the record "
-              f"within its noise")
+    firing = [k for k in EFFECTS if scores[k] >= 1.0]
+    # the slip-shape statistics (twin, load) are read last: the other effects
+    # change the shape of a slip too and leave traces in them, not conversely
+    group = [k for k in firing if k not in SLIP_SHAPE] or firing
+    if len(group) > 1:
+        effect = max(group, key=scores.get)
+        reason = (f"{', '.join(f'{k} (score {scores[k]:.2f})' for k in group)} all >= 1; {effect} has the "
+                  f"largest score")
+    elif group:
+        effect = group[0]
+        reason = f"{effect}: score {scores[effect]:.2f} >= 1"
+    else:
+        effect = "none"
+        reason = (f"every score below 1 (largest: {best}, {scores[best]:.2f}): the baseline explains the record "
+                  f"within its noise")
+    if firing and effect != "none" and set(firing) - set(group):
+        reason += f" (read before {', '.join(sorted(set(firing) - set(group)))}: slip-shape evidence comes last)"
 
     # the extension: candidates fitted on the training part, the best on it kept
     train = _Judge(t, x, y, vd, fn, ylow, tr, effect)
@@ -660,7 +707,7 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
     if effect != "none":
         cands = _candidates(effect, base, st, aux, t, x, y, vd, fn, ylow, tr)
         errs = [train.error(p)[0] for p in cands]
-        if cands and np.isfinite(min(errs)):
+        if errs and np.isfinite(min(errs)):
             ext = cands[int(np.argmin(errs))]
 
     # the gain on the last 30 %
