@@ -218,14 +218,9 @@ def cycles(t, x, fn, vd, min_cycles: int = 3) -> Cycles:
 
 # ------------------------------------------------------------------ evidence
 
-def _slip_sizes(c: Cycles, t, vd) -> list:
-    """The number of samples :func:`_slip_samples` takes from each slip."""
-    return [len(seg) for seg in _slip_samples(c, t, vd, split=True)[0]]
-
-
-def _slip_samples(c: Cycles, t, vd, split=False):
+def _slip_samples(c: Cycles, t, vd):
     """Samples inside slips (trimmed), with the branch: -0.5 before the
-    relative speed peaks, +0.5 after (per slip with ``split``)."""
+    relative speed peaks, +0.5 after."""
     idx, br = [], []
     for p, q in c.slip:
         n = q - p
@@ -240,8 +235,6 @@ def _slip_samples(c: Cycles, t, vd, split=False):
         kmax = int(np.argmax(vr))
         idx.append(seg)
         br.append(np.where(np.arange(seg.size) <= kmax, -0.5, 0.5))
-    if split:
-        return idx, br
     if not idx:
         return np.array([], int), np.array([])
     return np.concatenate(idx), np.concatenate(br)
@@ -332,12 +325,6 @@ def statistics(t, x, y, vd, fn, min_cycles: int = 3) -> tuple[dict, dict]:
         if yl.std() > 1e-9 * (1.0 + abs(float(ylow.mean()))):
             ycol = len(cols)
             cols.append(yl / yl.std())
-    # a cubic in the sliding velocity and one level per slip: the shape of a
-    # single-valued characteristic and slip-to-slip changes must not pass for
-    # a loop or for a load that follows y within the slip
-    cols.append((cols[1]) ** 3)
-    sl = np.repeat(np.arange(len(slip_sizes := _slip_sizes(c, t, vd))), slip_sizes)
-    cols += [(sl == k).astype(float) for k in range(1, len(slip_sizes))]
     A = np.column_stack(cols)
     coef = np.linalg.lstsq(A, F, rcond=None)[0]
     st["twin_branch"] = float(coef[3]) / amp
