@@ -59,12 +59,36 @@ contains
    end subroutine band_line
 
    !> Closed-form solution of u'' - b u' + u = 0 from (u0, y0) after time t.
+   !> For a steep band (|b| > 2, real roots l1 > l2 with l1*l2 = 1) and w*t > 1
+   !> the solution is written with exp(l1 t) and exp(l2 t), the smaller root
+   !> in magnitude as 1/(the larger): exp(sg t)*cosh(w t) would overflow to
+   !> inf*0 on a steep stick part (|b| of thousands) long before the point
+   !> leaves it.
    pure subroutine linear_flow(b, u0, y0, t, u, y)
       real(wp), intent(in) :: b, u0, y0, t
       real(wp), intent(out) :: u, y
-      real(wp) :: sg, disc, w, c, s, e
+      real(wp) :: sg, disc, w, c, s, e, l1, l2, e1, e2
       sg = 0.5_wp*b
       disc = sg*sg - 1.0_wp
+      if (disc > 0.0_wp) then
+         w = sqrt(disc)
+         if (w*t > 1.0_wp) then
+            if (sg >= 0.0_wp) then
+               l1 = sg + w
+               l2 = 1.0_wp/l1
+            else
+               l2 = sg - w
+               l1 = 1.0_wp/l2
+            end if
+            e1 = exp(l1*t)
+            e2 = exp(l2*t)
+            c = 0.5_wp*(e1 + e2)                ! exp(sg t) cosh(w t)
+            s = 0.5_wp*(e1 - e2)/w              ! exp(sg t) sinh(w t)/w
+            u = u0*c + (y0 - sg*u0)*s
+            y = y0*c + (sg*y0 - u0)*s
+            return
+         end if
+      end if
       if (disc < 0.0_wp) then
          w = sqrt(-disc)
          c = cos(w*t)

@@ -127,3 +127,76 @@ def test_sweep_cli_json_nulls_and_no_progress_in_a_pipe():
 def test_sweep_bad_range_exits_2(capsys):
     assert main(["sweep", str(CARDS / "lieng1_demo.dat"), "--v0", "1:2"]) == 2
     assert "START:STOP:N" in capsys.readouterr().err
+
+
+def _two_slope_characteristic(k, a, v0, stick_dy, stick_vertical=False):
+    """A piecewise-linear characteristic of the MLIEN plane (through the
+    origin, centre at (-k, v0)): the kinetic parts vertical (x = 0 below v0,
+    x = -2k above: infinite slope), the stick part from (-k - a, v0 + dy) to
+    (-k + a, v0 - dy) (zero slope as dy -> 0), or, with ``stick_vertical``,
+    no stick part at all (both parts of infinite slope)."""
+    e, d = 1e-9, stick_dy
+    if stick_vertical:
+        return np.array([-2 * k - e, -2 * k, 0.0, e]), np.array([v0 + 50, v0 + d, v0 - d, v0 - 50])
+    return (np.array([-2 * k - e, -2 * k, -k - a, -k + a, 0.0, e]),
+            np.array([v0 + 50, v0 + 2 * d, v0 + d, v0 - d, v0 - 2 * d, v0 - 50]))
+
+
+def test_zero_and_infinite_slopes_give_an_arc_closed_by_a_straight_part():
+    """Ch. 2.4.2.3: first part of zero slope, second infinite -> the cycle is a
+    circular arc (slip about the kinetic line's point on the abscissa) closed
+    by a straight part (stick at v0): it leaves the stick at the static peak
+    X = a - k, so its amplitude is 2 sqrt((a - k)^2 + v0^2), and every
+    trajectory whose arc meets the stick part is on it after one turn."""
+    k, a, v0 = 3.0, 8.0, 5.0
+    x, y = _two_slope_characteristic(k, a, v0, 1e-3)
+    r = np.hypot(a - k, v0)
+    res = cycles.find_cycles(x, y)
+    stable = [c for c in res.cycles if c.stable]
+    assert len(stable) == 1 and stable[0].amplitude == pytest.approx(2 * r, rel=2e-3)
+    # from any start whose first arc lands on the stick part: P(X0) = r
+    x0 = np.array([1.1 * v0, 1.5 * v0, np.hypot(a + k, v0) * 0.99])
+    _, xr, _ = cycles.return_map(x, y, x0)
+    np.testing.assert_allclose(xr, r, rtol=2e-3)
+    # the error is the stick part's finite slope: it shrinks with it
+    _, xr2, _ = cycles.return_map(*_two_slope_characteristic(k, a, v0, 1e-2), x0[:1])
+    assert abs(xr2[0] - r) > 3 * abs(xr[0] - r)
+
+
+def test_both_slopes_infinite_give_circles():
+    """Ch. 2.4.2.3: both parts of infinite slope -> the cycle becomes a circle
+    (a conservative system): every orbit inside the drive velocity closes on
+    itself, a circle about the origin of period 2 pi."""
+    x, y = _two_slope_characteristic(3.0, 0.0, 5.0, 1e-3, stick_vertical=True)
+    x0 = np.array([0.5, 2.0, 4.5])
+    xl, xr, per = cycles.return_map(x, y, x0)
+    np.testing.assert_allclose(xr, x0, rtol=1e-6)
+    np.testing.assert_allclose(xl, -x0, rtol=1e-6)
+    np.testing.assert_allclose(per, 2 * np.pi, rtol=1e-9)
+
+
+def test_below_the_critical_dmu_no_self_sustained_oscillation():
+    """Fig. 2.28: at a driving velocity with a stable origin (vk < v0 < v_oc),
+    the S.L.C. grows with dmu0 = mu_s - mu_k0, and below a critical dmu_oc
+    there is no self-sustained oscillation."""
+    x, v = thesis_characteristic(v0=10.0, eps=0.5, um=20.0, vmax=80)
+    f = [0.1, 0.3, 0.45, 0.7, 1.0, 1.4, 2.0]
+    s = cycles.sweep_dmu(x, v, f, v0=21.0, progress=False)
+    assert s.v_oc is not None and 0.45 < s.v_oc < 0.7
+    S = s.stable_amplitude
+    assert all(a is None for fac, a in zip(f, S) if fac < s.v_oc)
+    above = [a for fac, a in zip(f, S) if fac > s.v_oc]
+    assert all(a is not None for a in above) and all(np.diff(above) > 0)
+    # scaling keeps mu_k0 and the rising part: the line beyond the kinetic minimum is unchanged
+    xs, _ = cycles.scale_static_peak(x, v, 0.5)
+    far = np.abs(10.0 - v) >= 20.0
+    np.testing.assert_array_equal(xs[far], x[far])
+    near = (np.abs(10.0 - v) > 0.5) & ~far
+    assert np.all(np.abs(xs[near]) < np.abs(x[near]) + 1e-12)
+
+
+def test_sweep_dmu_cli_json(capsys):
+    code = main(["sweep", str(CARDS / "lieng1_demo.dat"), "--dmu", "0.5:1.5:3", "--json"])
+    assert code == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["dmu"] == [0.5, 1.0, 1.5] and len(d["stable_amplitude"]) == 3 and "dmu_oc" in d

@@ -164,20 +164,27 @@ def _cycles(args) -> int:
 def _sweep(args) -> int:
     import json
 
-    from .cycles import parse_range, sweep_v0
+    from .cycles import parse_range, sweep_dmu, sweep_v0
 
     deck, x, y = _deck_char(args)
-    v0s = parse_range(args.v0, "--v0")
-    res = sweep_v0(x, y, v0s, mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
+    if args.dmu is not None:
+        fac = parse_range(args.dmu, "--dmu")
+        if min(fac) < 0:
+            raise LiengInputError(f"--dmu {args.dmu}: the factors of dmu0 must not be negative")
+        res = sweep_dmu(x, y, fac, v0=args.at_v0, mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
+        head, unit, crit = "dmu0/dmu0_deck", "", "dmu_oc (self-sustained oscillation from)"
+    else:
+        res = sweep_v0(x, y, parse_range(args.v0, "--v0"), mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
+        head, unit, crit = "v0 (mm/s)", " mm/s", "v_oc (S.L.C. and U.L.C. merge)"
     if args.json:
         print(json.dumps(res.to_json(), indent=2))
     else:
-        print(f"{'v0 (mm/s)':>10} {'origin':>9} {'S.L.C. (mm)':>12} {'U.L.C. (mm)':>12}")
+        print(f"{head:>14} {'origin':>9} {'S.L.C. (mm)':>12} {'U.L.C. (mm)':>12}")
         for v, o, a, b in zip(res.v0, res.origin_stable, res.stable_amplitude, res.unstable_amplitude):
             fa = "-" if a is None else f"{a:.6g}"
             fb = "-" if b is None else f"{b:.6g}"
-            print(f"{v:10.4g} {'stable' if o else 'unstable':>9} {fa:>12} {fb:>12}")
-        print("v_oc (S.L.C. and U.L.C. merge): " + ("not in the range" if res.v_oc is None else f"{res.v_oc:.6g} mm/s"))
+            print(f"{v:14.4g} {'stable' if o else 'unstable':>9} {fa:>12} {fb:>12}")
+        print(f"{crit}: " + ("not in the range" if res.v_oc is None else f"{res.v_oc:.6g}{unit}"))
     return 0
 
 
@@ -258,11 +265,16 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Limit cycles from the return map on the abscissa, classified by "
                                    "Poincare's criterion (thesis App. 3).")
     deck_args(c)
-    w = sub.add_parser("sweep", help="limit cycles against the driving velocity (Fig. 2.27)",
+    w = sub.add_parser("sweep", help="limit cycles against the driving velocity (Fig. 2.27) or dmu0 (Fig. 2.28)",
                        description="The deck's characteristic moved to each driving velocity as TIMDIS moves "
-                                   "it, and its cycles found again; v_oc is where the S.L.C. and U.L.C. merge.")
+                                   "it (--v0), or its static peak dmu0 = mu_s - mu_k0 scaled (--dmu), and its "
+                                   "cycles found again; v_oc is where the S.L.C. and U.L.C. merge, dmu_oc the "
+                                   "smallest dmu0 with a self-sustained oscillation.")
     deck_args(w)
-    w.add_argument("--v0", required=True, metavar="START:STOP:N", help="driving velocities (mm/s)")
+    sw = w.add_mutually_exclusive_group(required=True)
+    sw.add_argument("--v0", metavar="START:STOP:N", help="driving velocities (mm/s)")
+    sw.add_argument("--dmu", metavar="START:STOP:N", help="factors of the deck's dmu0 (1 = the deck)")
+    w.add_argument("--at-v0", type=float, metavar="V", help="with --dmu: the driving velocity (default: the deck's)")
     dg = sub.add_parser("diagnose", help="what the 1-DoF model gets wrong on a measured trace, and why",
                         description="Fit the thesis's 1-DoF model to a measured stick-slip record, name the "
                                     "effect it misses (load_variation, twin_branch, static_ageing, triggering, "

@@ -40,7 +40,7 @@ from .errors import LiengInputError
 from .lieng1 import lookup_code
 
 __all__ = ["Cycle", "CyclesResult", "return_map", "find_cycles", "move_to_v0", "scale_static_peak",
-           "sweep_v0", "SweepResult"]
+           "sweep_v0", "sweep_dmu", "SweepResult"]
 
 MODES = ("exact", "faithful")
 
@@ -232,25 +232,38 @@ def move_to_v0(xchl, ychl, v0: float):
 
 
 def scale_static_peak(xchl, ychl, factor: float):
-    """The characteristic with its static peak scaled (Fig. 2.28): the part
-    of the line beyond the kinetic level is scaled about its centre of
-    symmetry by ``factor`` in X, so that dmu0 = mu_s - mu_k0 scales by it."""
+    """The characteristic with its static peak scaled (Fig. 2.28).
+
+    On each side of the centre of symmetry, from the centre out to the
+    minimum of the kinetic part (mu_k0, the lowest |X - XMDL| beyond the
+    static peak), the excess of |X - XMDL| over that minimum is multiplied
+    by ``factor``; the line beyond the minimum (the rising part) is left as
+    it is.  So dmu0 = mu_s - mu_k0 scales by ``factor`` and mu_k0 stays."""
     x, y = check_characteristic(xchl, ychl)
     c = centre_of_symmetry(x, y)
     dx = x - c.xmdl
-    # the kinetic level: |X| at the ends of the falling parts (smallest |dx| outside the run)
-    outside = np.ones(x.size, bool)
-    outside[c.lll - 1: c.mmm + 1] = False
-    kin = np.abs(dx[outside]).min() if outside.any() else 0.0
-    over = np.abs(dx) > kin
     xs = x.copy()
-    xs[over] = c.xmdl + np.sign(dx[over]) * (kin + factor * (np.abs(dx[over]) - kin))
+    for side in (np.flatnonzero(y < c.ymdl), np.flatnonzero(y > c.ymdl)[::-1]):
+        if side.size < 2:
+            continue
+        a = np.abs(dx[side])                      # from the centre outwards
+        fall = np.flatnonzero(np.diff(a) < 0)
+        if fall.size == 0:
+            continue                              # no static peak on this side
+        p = int(fall[0])                          # the static peak: the first local maximum
+        rise = np.flatnonzero(np.diff(a[p:]) > 0)
+        m = p + (int(rise[0]) if rise.size else a.size - 1 - p)   # the kinetic minimum after it
+        kin = a[m]
+        inner = side[:m]
+        over = inner[np.abs(dx[inner]) > kin]
+        xs[over] = c.xmdl + np.sign(dx[over]) * (kin + factor * (np.abs(dx[over]) - kin))
     return xs, y
 
 
 @dataclass
 class SweepResult:
-    """Cycles against the driving velocity (Fig. 2.27)."""
+    """Cycles against a parameter: the driving velocity (Fig. 2.27) or the
+    static peak's scale dmu0 / dmu0_deck (Fig. 2.28)."""
 
     v0: list
     origin_stable: list
@@ -258,8 +271,13 @@ class SweepResult:
     unstable_amplitude: list
     v_oc: float | None
     mode: str
+    #: "v0" or "dmu": what ``v0`` holds (the values swept)
+    param: str = "v0"
 
     def to_json(self) -> dict:
+        if self.param == "dmu":
+            return {"dmu": self.v0, "origin_stable": self.origin_stable, "stable_amplitude": self.stable_amplitude,
+                    "unstable_amplitude": self.unstable_amplitude, "dmu_oc": self.v_oc, "mode": self.mode}
         return {"v0": self.v0, "origin_stable": self.origin_stable, "stable_amplitude": self.stable_amplitude,
                 "unstable_amplitude": self.unstable_amplitude, "v_oc": self.v_oc, "mode": self.mode}
 
@@ -275,43 +293,69 @@ def _progress(i: int, n: int, label: str, enabled: bool) -> None:
     sys.stderr.flush()
 
 
+def _sweep(values, move, label, critical, mode, dtheta, lookup, progress, find_critical, param, **kw):
+    """Cycles of ``move(value)`` for each value, and the critical value where
+    ``critical(result_k, result_k+1)`` says the regime changes (bisection)."""
+    if progress is None:
+        progress = sys.stderr.isatty()
+    values = [float(v) for v in values]
+    res = []
+    for i, val in enumerate(values):
+        res.append(find_cycles(*move(val), mode, dtheta, lookup, **kw))
+        _progress(i + 1, len(values), label, progress)
+    crit = None
+    if find_critical:
+        for k in range(len(values) - 1):
+            if critical(res[k], res[k + 1]):
+                lo, hi = values[k], values[k + 1]
+                has_lo = res[k].stable_amplitude is not None
+                for _ in range(40):
+                    mid = 0.5 * (lo + hi)
+                    if (find_cycles(*move(mid), mode, dtheta, lookup, **kw).stable_amplitude is not None) == has_lo:
+                        lo = mid
+                    else:
+                        hi = mid
+                    if abs(hi - lo) < 1e-6 * max(1.0, abs(hi)):
+                        break
+                crit = 0.5 * (lo + hi)
+                break
+    return SweepResult(values, [r.origin_stable for r in res], [r.stable_amplitude for r in res],
+                       [r.unstable_amplitude for r in res], crit, mode, param)
+
+
 def sweep_v0(xchl, ychl, v0s, mode: str = "exact", dtheta=None, lookup: str = "listing",
              progress: bool | None = None, find_voc: bool = True, **kw) -> SweepResult:
     """The cycles for each driving velocity in ``v0s`` (the characteristic
-    moved as TIMDIS moves it), and v_oc, where the S.L.C. and U.L.C. merge.
+    moved as TIMDIS moves it), and v_oc, where the S.L.C. and U.L.C. merge
+    (the first step from both cycles to none, refined by bisection).
 
     ``progress``: a progress bar on standard error; by default only when it
     is a terminal.
     """
-    if progress is None:
-        progress = sys.stderr.isatty()
-    v0s = [float(v) for v in v0s]
-    res = []
-    for i, v0 in enumerate(v0s):
-        xm, ym = move_to_v0(xchl, ychl, v0)
-        res.append(find_cycles(xm, ym, mode, dtheta, lookup, **kw))
-        _progress(i + 1, len(v0s), "sweep v0", progress)
-    v_oc = None
-    if find_voc:
-        both = [r.stable_amplitude is not None and r.unstable_amplitude is not None for r in res]
-        none = [r.stable_amplitude is None and r.origin_stable for r in res]
-        for k in range(len(v0s) - 1):
-            if both[k] and none[k + 1]:
-                lo, hi = v0s[k], v0s[k + 1]
-                for _ in range(30):
-                    mid = 0.5 * (lo + hi)
-                    xm, ym = move_to_v0(xchl, ychl, mid)
-                    rm = find_cycles(xm, ym, mode, dtheta, lookup, **kw)
-                    if rm.stable_amplitude is not None:
-                        lo = mid
-                    else:
-                        hi = mid
-                    if hi - lo < 1e-6 * max(1.0, abs(hi)):
-                        break
-                v_oc = 0.5 * (lo + hi)
-                break
-    return SweepResult(v0s, [r.origin_stable for r in res], [r.stable_amplitude for r in res],
-                       [r.unstable_amplitude for r in res], v_oc, mode)
+    def merge(a, b):
+        return (a.stable_amplitude is not None and a.unstable_amplitude is not None
+                and b.stable_amplitude is None and b.origin_stable)
+
+    return _sweep(v0s, lambda v: move_to_v0(xchl, ychl, v), "sweep v0", merge, mode, dtheta, lookup, progress,
+                  find_voc, "v0", **kw)
+
+
+def sweep_dmu(xchl, ychl, factors, v0: float | None = None, mode: str = "exact", dtheta=None,
+              lookup: str = "listing", progress: bool | None = None, find_dmu_oc: bool = True,
+              **kw) -> SweepResult:
+    """The cycles with the static peak scaled (Fig. 2.28): dmu0 = mu_s - mu_k0
+    multiplied by each factor (:func:`scale_static_peak`), at the deck's
+    driving velocity or moved to ``v0``, and dmu_oc, the smallest factor with
+    a self-sustained oscillation (a stable cycle) when the sweep crosses it.
+    """
+    def move(f):
+        xs, ys = scale_static_peak(xchl, ychl, f)
+        return (xs, ys) if v0 is None else move_to_v0(xs, ys, v0)
+
+    def onset(a, b):
+        return a.stable_amplitude is None and b.stable_amplitude is not None
+
+    return _sweep(factors, move, "sweep dmu", onset, mode, dtheta, lookup, progress, find_dmu_oc, "dmu", **kw)
 
 
 def parse_range(text: str, name: str = "--v0"):
