@@ -47,6 +47,7 @@ test: install
 bench: install
 	$(VPY) tests/benchmarks/bench_point.py
 	$(VPY) tests/benchmarks/bench_trc.py
+	$(VPY) tests/benchmarks/bench_sweep.py
 
 clean:
 	rm -rf build out .pytest_cache
