@@ -230,6 +230,17 @@ def _synth(args) -> int:
     return 0
 
 
+def _figures(args) -> int:
+    from .figures import figures
+    from .outputs import staged_outdir
+
+    with staged_outdir(args.outdir) as tmp:
+        paths = figures(tmp, cards=args.cards, only=args.only)
+    if not args.quiet:
+        print(f"wrote {len(paths)} figures to {args.outdir}/: " + ", ".join(p.name for p in paths))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="lieng",
@@ -298,6 +309,14 @@ def build_parser() -> argparse.ArgumentParser:
     sy.add_argument("--strength", type=float, default=None, help="scale of the effect (default 1)")
     sy.add_argument("-o", "--output", required=True, help="the CSV to write")
     sy.add_argument("-q", "--quiet", action="store_true")
+    fg = sub.add_parser("figures", help="regenerate the thesis's theoretical figures (2.22-2.29, A9-1..A9-7)",
+                        description="Regenerate the theoretical figures the thesis describes, each from a deck "
+                                    "in cards/ (cards/figures/, cards/mlien_a9_7.dat), each PNG captioned with "
+                                    "the section it reproduces.")
+    fg.add_argument("-o", "--outdir", required=True, help="output directory")
+    fg.add_argument("--cards", default="cards", help="the project's cards directory (default: ./cards)")
+    fg.add_argument("--only", nargs="+", metavar="FIG", help="only these figures (e.g. 2.27 A9-7)")
+    fg.add_argument("-q", "--quiet", action="store_true")
     return p
 
 
@@ -315,6 +334,8 @@ def main(argv=None) -> int:
             return _diagnose(args)
         if args.command == "synth":
             return _synth(args)
+        if args.command == "figures":
+            return _figures(args)
         parser.error(f"unknown command {args.command}")  # pragma: no cover
     except LiengInputError as exc:
         print(f"lieng: error: {exc}", file=sys.stderr)

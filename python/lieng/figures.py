@@ -1,0 +1,195 @@
+"""``lieng figures``: the thesis's theoretical figures regenerated from the
+decks in ``cards/figures`` (written by ``cards/make_figure_decks.py``) and
+``cards/mlien_a9_7.dat``.
+
+Each PNG is captioned with the section it reproduces and what the text says
+of it; the figures themselves are lost in the seed's OCR, so each shows the
+claim the text makes, computed by the restored programs (LIENG-1, MLIEN) and
+by :mod:`lieng.cycles` (exact mode).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .cards import read_deck
+from .errors import LiengInputError
+
+__all__ = ["FIGURES", "figures"]
+
+#: figure -> (deck(s) in the cards directory, caption)
+FIGURES = {
+    "2.22": (["figures/fig2_22.dat"], "Fig. 2.22 (ch. 2.3.1.4): trajectories from inside and outside reach the "
+             "limit cycle (LIENG-1, 9 trajectories)"),
+    "2.23": (["figures/fig2_23_stable.dat", "figures/fig2_23_unstable.dat"],
+             "Fig. 2.23 (ch. 2.3.1.3): the slope of the characteristic at the origin decides its stability "
+             "(left: rising part, stable; right: falling part, unstable)"),
+    "2.26": (["figures/fig2_26.dat"], "Fig. 2.26 (ch. 2.4.2.1): v0 below the first critical velocity (on the "
+             "stick part): the bodies come to rest, no oscillation"),
+    "2.27": (["figures/fig2_27.dat"], "Fig. 2.27 (ch. 2.4.2.1, Table 2.IV): S.L.C. and U.L.C. amplitudes against "
+             "the driving velocity; they merge at v_oc"),
+    "2.28": (["figures/fig2_28.dat"], "Fig. 2.28 (ch. 2.4.2.2): amplitude against dmu0 = mu_s - mu_k0 at a fixed "
+             "v0; below dmu_oc no self-sustained oscillation"),
+    "2.29": (["figures/fig2_29_arc.dat", "figures/fig2_29_circle.dat"],
+             "Fig. 2.29 (ch. 2.4.2.3): slopes of the two parts: zero and infinite -> a circular arc closed by a "
+             "straight part (left); both infinite -> circles, a conservative system (right; LIENG-1's tangent step "
+             "adds a little energy each turn, so its circles open slowly)"),
+    **{f"A9-{k}": ([f"figures/figA9_{k}.dat"],
+                   f"Fig. A9-{k} (App. 9): the characteristic's geometry ("
+                   + ["the reference line", "a flatter falling part", "a steeper falling part",
+                      "a higher static peak", "a steeper rising part", "a wider stick part"][k - 1]
+                   + ") -> trajectories and stick-slip trace") for k in range(1, 7)},
+    "A9-7": (["mlien_a9_7.dat"], "Fig. A9-7 (App. 9, App. 6): MLIEN, v0 = v0(t) and the triggering "
+             "oscillation in the formation of the trajectories"),
+}
+
+
+def _fig(ncols=1):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, ncols, figsize=(6.5 * ncols, 5.2), dpi=110, squeeze=False)
+    return fig, axes[0]
+
+
+def _save(fig, path: Path, caption: str) -> Path:
+    import matplotlib.pyplot as plt
+
+    fig.text(0.01, 0.01, caption, fontsize=7.5, color="0.25", wrap=True)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    fig.savefig(path, metadata={"Title": caption.split(" (")[0], "Description": caption})
+    plt.close(fig)
+    return path
+
+
+def _phase(ax, res, title, every=5):
+    ax.plot(res.xchl, res.ychl, "k", lw=1.5, label="characteristic")
+    for k in range(res.x.shape[0]):
+        ax.plot(res.x[k, ::every], res.y[k, ::every], lw=0.7)
+    ax.set_xlabel("displacement x (mm)")
+    ax.set_ylabel("velocity v (mm/s)")
+    ax.set_title(title, fontsize=9)
+    lim = np.percentile(np.abs(res.x), 99.5) * 1.3 + 1
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(np.percentile(res.y, 0.5) - 3, np.percentile(res.y, 99.5) + 3)
+
+
+def _lieng1(cards: Path, name: str, ntraj=9, npts=3000):
+    from .lieng1 import run_deck
+
+    deck = read_deck(cards / name, program="lieng1")
+    return deck, run_deck(deck, ntraj=ntraj, npts=npts)
+
+
+def _plot_phase_figs(cards, decks, path, caption, ntraj):
+    fig, axes = _fig(len(decks))
+    for ax, name in zip(axes, decks):
+        deck, res = _lieng1(cards, name, ntraj=ntraj)
+        _phase(ax, res, Path(name).name)
+    return _save(fig, path, caption)
+
+
+def _sweep_fig(cards, name, path, caption, kind):
+    from .cycles import sweep_dmu, sweep_v0
+
+    deck = read_deck(cards / name, program="lieng1")
+    x, y = deck.xchl[: deck.n], deck.ychl[: deck.n]
+    if kind == "v0":
+        vals = np.linspace(0.2, 30.0, 60)
+        s = sweep_v0(x, y, vals, progress=False)
+        xlabel, crit = "driving velocity v0 (mm/s)", "v_oc"
+    else:
+        vals = np.linspace(0.1, 2.0, 40)
+        s = sweep_dmu(x, y, vals, progress=False)
+        xlabel, crit = "dmu0 / dmu0 of the deck", "dmu_oc"
+    fig, (ax,) = _fig()
+    sa = np.array([np.nan if a is None else a for a in s.stable_amplitude])
+    ua = np.array([np.nan if a is None else a for a in s.unstable_amplitude])
+    ax.plot(vals, sa, "o-", ms=3, label="S.L.C. (stable)")
+    ax.plot(vals, ua, "s--", ms=3, label="U.L.C. (unstable)")
+    if s.v_oc is not None:
+        ax.axvline(s.v_oc, color="0.4", ls=":", label=f"{crit} = {s.v_oc:.4g}")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("amplitude of the limit cycle (mm)")
+    ax.legend(fontsize=8)
+    ax.set_title(Path(name).name, fontsize=9)
+    return _save(fig, path, caption)
+
+
+def _a9(cards, name, path, caption):
+    deck, res = _lieng1(cards, name, ntraj=1, npts=3000)
+    fig, axes = _fig(2)
+    _phase(axes[0], res, Path(name).name, every=2)
+    axes[1].plot(res.t[0], res.x[0], lw=0.8)
+    axes[1].set_xlabel("time T (1/omega_n units)")
+    axes[1].set_ylabel("displacement x (mm)")
+    axes[1].set_title("stick-slip trace", fontsize=9)
+    return _save(fig, path, caption)
+
+
+def _a9_7(cards, name, path, caption):
+    from .mlien import run_deck
+
+    deck = read_deck(cards / name, program="mlien")
+    res = run_deck(deck)
+    fig, axes = _fig(2)
+    axes[0].plot(res.xchl_last, res.ychl_last, "k", lw=1.5, label="characteristic (last)")
+    axes[0].plot(res.x, res.y, lw=0.6)
+    axes[0].set_xlabel("displacement x (mm)")
+    axes[0].set_ylabel("velocity v (mm/s)")
+    axes[0].set_title(name, fontsize=9)
+    axes[1].plot(res.t, res.y, lw=0.6, label="velocity")
+    axes[1].plot(res.t, res.ymdl, lw=1.0, label="driving velocity v0(t)")
+    axes[1].set_xlabel("time T (1/omega_n units)")
+    axes[1].set_ylabel("velocity (mm/s)")
+    axes[1].legend(fontsize=8)
+    return _save(fig, path, caption)
+
+
+def figures(outdir, cards="cards", only=None) -> list[Path]:
+    """Regenerate the theoretical figures into ``outdir``.
+
+    Parameters
+    ----------
+    outdir : path-like
+        An existing directory.
+    cards : path-like, optional
+        The project's ``cards`` directory (with ``figures/``).
+    only : iterable of str, optional
+        Figure names (keys of :data:`FIGURES`); all by default.
+
+    Returns
+    -------
+    list of Path
+        The PNGs written, ``fig_<name>.png``.
+    """
+    cards, outdir = Path(cards), Path(outdir)
+    names = list(FIGURES) if only is None else list(only)
+    for n in names:
+        if n not in FIGURES:
+            raise LiengInputError(f"figure {n!r}: choose from {', '.join(FIGURES)}")
+        for d in FIGURES[n][0]:
+            if not (cards / d).is_file():
+                raise LiengInputError(f"{cards / d}: deck of Fig. {n} not found (run from the project's top "
+                                      f"directory or give --cards; cards/make_figure_decks.py writes them)")
+    out = []
+    for n in names:
+        decks, cap = FIGURES[n]
+        path = outdir / f"fig_{n.replace('.', '_')}.png"
+        if n in ("2.22", "2.26"):
+            out.append(_plot_phase_figs(cards, decks, path, cap, 9))
+        elif n in ("2.23", "2.29"):
+            out.append(_plot_phase_figs(cards, decks, path, cap, 6))
+        elif n == "2.27":
+            out.append(_sweep_fig(cards, decks[0], path, cap, "v0"))
+        elif n == "2.28":
+            out.append(_sweep_fig(cards, decks[0], path, cap, "dmu"))
+        elif n == "A9-7":
+            out.append(_a9_7(cards, decks[0], path, cap))
+        else:
+            out.append(_a9(cards, decks[0], path, cap))
+    return out
