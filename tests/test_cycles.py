@@ -200,3 +200,36 @@ def test_sweep_dmu_cli_json(capsys):
     assert code == 0
     d = json.loads(capsys.readouterr().out)
     assert d["dmu"] == [0.5, 1.0, 1.5] and len(d["stable_amplitude"]) == 3 and "dmu_oc" in d
+
+
+def test_at_v_oc_the_two_cycles_merge_into_one_semi_stable_cycle():
+    """Table 2.IV: v0 = v_oc: one limit cycle, stable from outside and
+    unstable from inside; just below it the S.L.C. and U.L.C. have nearly
+    the same amplitude, just above there is none; v_oc does not depend on
+    the scan grid (cycles closer than the grid spacing are still found)."""
+    x, v = thesis_characteristic(v0=10.0, eps=0.5, um=20.0, vmax=80)
+    s = cycles.sweep_v0(x, v, [23.0, 40.0], progress=False)
+    fine = cycles.sweep_v0(x, v, [23.0, 40.0], progress=False, ngrid=600)
+    assert s.v_oc == pytest.approx(fine.v_oc, rel=1e-4)
+    below = cycles.find_cycles(*cycles.move_to_v0(x, v, s.v_oc * (1 - 1e-5)))
+    assert below.stable_amplitude == pytest.approx(below.unstable_amplitude, rel=1e-3)
+    assert below.unstable_amplitude <= below.stable_amplitude
+    above = cycles.find_cycles(*cycles.move_to_v0(x, v, s.v_oc * (1 + 1e-3)))
+    assert above.cycles == [] and above.origin_stable
+
+
+def test_stick_phase_has_a_small_but_finite_relative_velocity():
+    """Ch. 2.3.1.1: with a stick part of finite slope, 'stick' is sliding at
+    a small relative velocity: on the limit cycle the velocity stays within
+    the stick part's width EPS of v0 but not at v0."""
+    from lieng import lieng1
+
+    eps = 0.5
+    x, v = thesis_characteristic(v0=10.0, eps=eps, um=20.0, vmax=80)
+    c = cycles.find_cycles(x, v).cycles[-1]
+    res = lieng1(x, v, xinp=c.x_right, yinp=0.0, dtheta=0.005, ntraj=1, npts=3000)
+    rel = np.abs(res.y[0] - 10.0)
+    stick = rel < eps
+    assert stick.mean() > 0.05                       # there is a stick phase
+    assert 0.0 < np.median(rel[stick]) < eps         # finite but small relative velocity
+    assert np.all(rel[stick] > 0.0)

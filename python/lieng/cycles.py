@@ -196,16 +196,26 @@ def find_cycles(xchl, ychl, mode: str = "exact", dtheta=None, lookup: str = "lis
             rc = brentq(lambda q: D(q)[0], r[k], r[k + 1], xtol=1e-12 * scale, rtol=1e-15, maxiter=200)
             kind = "stable" if d[k] > 0 else "unstable"
             cycles.append(_cycle(x, y, xs + rc, kind, mode, dtheta, lookup))
-    # semi-stable cycles: D touches zero without changing sign
+    # D comes near zero without changing sign on the grid: a semi-stable
+    # cycle (D touches zero), or two cycles closer than the grid spacing
+    # (D crosses zero twice between grid points: a stable and an unstable
+    # cycle about to merge, as near v_oc)
     ad = np.abs(d) / r
     for k in range(1, len(r) - 1):
         if np.sign(d[k - 1]) == np.sign(d[k]) == np.sign(d[k + 1]) and ad[k] < ad[k - 1] and ad[k] < ad[k + 1] \
-                and ad[k] < 0.02:
+                and ad[k] < 0.05:
             sgn = np.sign(d[k])
             res = minimize_scalar(lambda q: sgn * D(q)[0] / q, bounds=(r[k - 1], r[k + 1]), method="bounded",
                                   options={"xatol": 1e-10 * scale})
-            if abs(D(res.x)[0]) < 1e-7 * res.x:
+            dm = D(res.x)[0]
+            if abs(dm) < 1e-7 * res.x:
                 cycles.append(_cycle(x, y, xs + res.x, "semi-stable", mode, dtheta, lookup))
+            elif sgn * dm < 0:
+                for lo, hi in ((r[k - 1], res.x), (res.x, r[k + 1])):
+                    rc = brentq(lambda q: D(q)[0], lo, hi, xtol=1e-12 * scale, rtol=1e-15, maxiter=200)
+                    inside = D(0.5 * (lo + rc) if lo < rc else lo)[0]
+                    cycles.append(_cycle(x, y, xs + rc, "stable" if inside > 0 else "unstable", mode, dtheta,
+                                         lookup))
     origin_stable = bool(d[0] < 0)
     return CyclesResult(origin_stable, xs, sorted(cycles, key=lambda c: c.amplitude), mode,
                         None if mode == "exact" else float(dtheta))
