@@ -346,3 +346,22 @@ subroutine core_slider(n, dt, nsub, vd, load, wn, zeta, fs, fk, ds, vs, delta, a
    call slider_run(n, dt, nsub, vd, load, wn, zeta, fs, fk, ds, vs, delta, age_a, age_tau, kx, xref, x0, &
                    x, v, state, status)
 end subroutine core_slider
+
+!> The 2-DoF dual-pin-on-disc model (module twodof).
+subroutine core_twodof(n, dt, nsub, m, c, k, fn, kn, mus, muk, v0, eta, s0, &
+                       x1, v1, x2, v2, fnorm, ffric, state, nswitch, status)
+   use lienard_core, only: wp
+   use twodof, only: twodof_run
+   implicit none
+   integer, intent(in) :: n
+   real(wp), intent(in) :: dt
+   integer, intent(in) :: nsub
+   real(wp), intent(in) :: m(2, 2), c(2, 2), k(2, 2)
+   real(wp), intent(in) :: fn, kn, mus, muk, v0, eta
+   real(wp), intent(in) :: s0(4)
+   real(wp), intent(out) :: x1(n), v1(n), x2(n), v2(n), fnorm(n), ffric(n)
+   integer, intent(out) :: state(n)
+   integer, intent(out) :: nswitch, status
+   call twodof_run(n, dt, nsub, m, c, k, fn, kn, mus, muk, v0, eta, s0, x1, v1, x2, v2, fnorm, ffric, state, &
+                   nswitch, status)
+end subroutine core_twodof
