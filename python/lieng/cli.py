@@ -241,6 +241,46 @@ def _figures(args) -> int:
     return 0
 
 
+def _twodof(args) -> int:
+    import json
+
+    from .twodof import compare, write_outputs
+
+    for name in ("preload", "rpm", "t_end"):
+        v = getattr(args, name)
+        if not (v > 0 and v < float("inf")):
+            raise LiengInputError(f"--{name.replace('_', '-')} {v}: must be a positive number")
+    if args.t_end > 36000:
+        raise LiengInputError(f"--t-end {args.t_end}: at most 36000 s")
+    keep: dict = {}
+    if args.belt is not None and not (0 < args.belt < 1):
+        raise LiengInputError(f"--belt {args.belt}: the belt velocity must be between 0 and 1 m/s")
+    res = compare(preload=args.preload, rpm=args.rpm, t_end=args.t_end, keep=keep, belt=args.belt)
+    if args.outdir:
+        from .outputs import staged_outdir
+
+        with staged_outdir(args.outdir) as tmp:
+            write_outputs(res, keep, tmp)
+    if args.json:
+        print(json.dumps(res, indent=2))
+    else:
+        pap = res.get("paper")
+        print(f"dual-pin-on-disc, Fn = {args.preload:g} N, belt {res['belt_m_s']:.4g} m/s, {args.t_end:g} s; modal "
+              f"frequencies "
+              + ", ".join(f"{f:.3f}" for f in res["modal_hz"]) + " Hz")
+        print(f"{'':24}{'peak (deg)':>12}{'fluct (deg)':>12}{'freq (Hz)':>11}{'N mean':>9}{'N std':>8}")
+        rows = []
+        if pap:
+            rows += [("paper, experiment", pap["experiment"]), ("paper, theory", pap["theory"])]
+        rows += [("2-DoF (this model)", res), ("1-DoF, constant N", res["onedof"]),
+                 ("1-DoF, C_N(t)", res["onedof_load_corrected"])]
+        for lab, r in rows:
+            nf = r.get("normal_force", {})
+            nm = f"{nf['mean']:9.2f}{nf['std']:8.3f}" if nf else ""
+            print(f"{lab:24}{r['peak_deg']:12.3f}{r['fluct_deg']:12.3f}{r['dominant_hz']:11.3f}{nm}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="lieng",
@@ -309,6 +349,17 @@ def build_parser() -> argparse.ArgumentParser:
     sy.add_argument("--strength", type=float, default=None, help="scale of the effect (default 1)")
     sy.add_argument("-o", "--output", required=True, help="the CSV to write")
     sy.add_argument("-q", "--quiet", action="store_true")
+    td = sub.add_parser("twodof", help="the 2-DoF dual-pin-on-disc model (seed 001) against the 1-DoF model",
+                        description="Simulate the reconstructed 2-DoF dual-pin-on-disc rig (Leine's switch "
+                                    "model) and the thesis's 1-DoF model of the same rig; print the paper's "
+                                    "Table 3/4 quantities beside the paper's values.")
+    td.add_argument("--preload", type=float, default=80.0, help="total normal preload of both pins (N)")
+    td.add_argument("--rpm", type=float, default=0.1, help="disc speed (rpm; belt at r2 = 0.08 m)")
+    td.add_argument("--t-end", type=float, default=600.0, help="simulated time (s, default 600 as the tests)")
+    td.add_argument("--belt", type=float, help="belt velocity (m/s) instead of the disc at --rpm and r2 = 0.08 m "
+                    "(e.g. 0.00838, sec. 5's value)")
+    td.add_argument("-o", "--outdir", help="write twodof.json and plots here")
+    td.add_argument("--json", action="store_true", help="print JSON")
     fg = sub.add_parser("figures", help="regenerate the thesis's theoretical figures (2.22-2.29, A9-1..A9-7)",
                         description="Regenerate the theoretical figures the thesis describes, each from a deck "
                                     "in cards/ (cards/figures/, cards/mlien_a9_7.dat), each PNG captioned with "
@@ -336,6 +387,8 @@ def main(argv=None) -> int:
             return _synth(args)
         if args.command == "figures":
             return _figures(args)
+        if args.command == "twodof":
+            return _twodof(args)
         parser.error(f"unknown command {args.command}")  # pragma: no cover
     except LiengInputError as exc:
         print(f"lieng: error: {exc}", file=sys.stderr)

@@ -27,7 +27,7 @@ from . import _core
 from .errors import LiengInputError
 
 __all__ = ["RigParams", "matrices", "modal_frequencies", "identify_k2", "simulate", "Simulation", "metrics",
-           "onedof", "compare", "PAPER", "rpm_to_belt"]
+           "onedof", "compare", "PAPER", "rpm_to_belt", "write_outputs"]
 
 #: The paper's Tables 3 and 4 (experiment, theory) at 0.1 rpm: peak angle of
 #: Part 1 (deg), amplitude of its fluctuation (deg), dominant frequency (Hz).
@@ -222,10 +222,10 @@ def _dominant(sig, dt, fmin=0.05):
 
 def metrics(sim: Simulation, steady_from: float = 0.5) -> dict:
     """Table 3/4's quantities: the peak angle of Part 1 (its maximum over
-    the run, deg), the amplitude of its steady-state fluctuation (median
-    peak-to-peak over the dominant period, deg, on the last half), the
-    dominant FFT frequency of the angle there (Hz), and the normal force's
-    mean and standard deviation there (N)."""
+    the run, deg), the amplitude of its steady-state fluctuation (half the
+    median peak-to-peak range over windows of the dominant period, deg, on
+    the last half), the dominant FFT frequency of the angle there (Hz, above
+    0.05 Hz), and the normal force's mean and standard deviation there (N)."""
     t, th = sim.t, sim.theta_deg
     dt = float(t[1] - t[0])
     i0 = int(steady_from * t.size)
@@ -234,21 +234,97 @@ def metrics(sim: Simulation, steady_from: float = 0.5) -> dict:
     per = max(int(round(1.0 / f / dt)), 2)
     ptp = [np.ptp(ss[j:j + per]) for j in range(0, ss.size - per + 1, per)]
     nf = sim.normal[i0:]
-    return {"peak_deg": float(th.max()), "fluct_deg": float(np.median(ptp)) if ptp else float(np.ptp(ss)),
+    return {"peak_deg": float(th.max()), "fluct_deg": 0.5 * float(np.median(ptp) if ptp else np.ptp(ss)),
             "dominant_hz": f, "normal_force": {"mean": float(nf.mean()), "std": float(nf.std())}}
 
 
-def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, params: RigParams | None = None) -> dict:
+def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, params: RigParams | None = None,
+            keep: dict | None = None, belt: float | None = None) -> dict:
     """``lieng twodof``'s JSON: modal frequencies, the 2-DoF metrics, the
-    1-DoF (constant load) metrics and the paper's Table 3/4 values."""
+    1-DoF (constant load) and load-corrected 1-DoF metrics, the re-identified
+    k2 and the paper's Table 3/4 values.  muk is the paper's for 80 N (0.17)
+    and 100 N (0.19), interpolated linearly in the preload between them.
+    The belt moves at 0.1 rpm at r2 = 0.08 m (8.38e-4 m/s, sec. 4.3) unless
+    ``belt`` (m/s) is given."""
     p = params or RigParams()
-    if preload in PAPER and params is None:
-        p = replace(p, muk=PAPER[preload]["muk"])
-    v0 = rpm_to_belt(rpm)
-    two = metrics(simulate(p, t_end=t_end, preload=preload, v0=v0))
-    one = metrics(onedof(p, t_end=t_end, preload=preload, v0=v0))
-    out = {"modal_hz": [float(f) for f in modal_frequencies(p)], **two, "onedof": one,
-           "preload_n": preload, "rpm": rpm, "belt_m_s": v0, "params": p.to_json()}
-    if preload in PAPER:
-        out["paper"] = {k: PAPER[preload][k] for k in ("experiment", "theory")}
+    if params is None:
+        muk = float(np.interp(preload, [80.0, 100.0], [PAPER[80.0]["muk"], PAPER[100.0]["muk"]]))
+        p = replace(p, muk=muk)
+    v0 = rpm_to_belt(rpm) if belt is None else float(belt)
+    s2 = simulate(p, t_end=t_end, preload=preload, v0=v0)
+    s1 = onedof(p, t_end=t_end, preload=preload, v0=v0)
+    sc = onedof(p, load_correction=True, t_end=t_end, preload=preload, v0=v0)
+    k2, fk2 = identify_k2(p)
+    out = {"modal_hz": [float(f) for f in modal_frequencies(p)], **metrics(s2), "onedof": metrics(s1),
+           "onedof_load_corrected": metrics(sc),
+           "k2_identified": {"k2": k2, "modal_hz": [float(f) for f in fk2], "table2_k2": p.k2},
+           "preload_n": float(preload), "rpm": float(rpm), "belt_m_s": v0, "params": p.to_json()}
+    if float(preload) in PAPER:
+        out["paper"] = {k: PAPER[float(preload)][k] for k in ("experiment", "theory")}
+    if keep is not None:
+        keep.update({"2-DoF": s2, "1-DoF": s1, "1-DoF C_N": sc})
     return out
+
+
+def write_outputs(res: dict, sims: dict, outdir) -> None:
+    """Plots (angle, forces, spectrum: 2-DoF beside 1-DoF, the paper's values
+    marked) and ``twodof.json`` into ``outdir``."""
+    import json
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = Path(outdir)
+    (out / "twodof.json").write_text(json.dumps(res, indent=2) + "\n", encoding="utf-8")
+    cap = (f"lieng twodof: dual-pin-on-disc rig (seed 001), Fn = {res['preload_n']:g} N, {res['rpm']:g} rpm; "
+           f"2-DoF reconstruction vs the thesis's 1-DoF model (constant load)")
+    two, one = sims["2-DoF"], sims["1-DoF"]
+    fig, ax = plt.subplots(2, 1, figsize=(10, 7), dpi=110)
+    for lab, s, kw in (("2-DoF", two, {"color": "C0"}), ("1-DoF (constant N)", one, {"color": "C1"})):
+        ax[0].plot(s.t, s.theta_deg, lw=0.5, label=lab, **kw)
+        w = (s.t > s.t[-1] - 20)
+        ax[1].plot(s.t[w], s.theta_deg[w], lw=0.8, label=lab, **kw)
+    pap = res.get("paper")
+    if pap:
+        ax[0].axhline(pap["experiment"]["peak_deg"], color="k", ls=":", lw=0.8, label="paper: measured peak")
+        ax[0].axhline(pap["theory"]["peak_deg"], color="0.5", ls="--", lw=0.8, label="paper: its theory's peak")
+    ax[0].set_ylabel("angle of Part 1 (deg)")
+    ax[1].set_xlabel("time (s)")
+    ax[1].set_ylabel("angle of Part 1 (deg)")
+    ax[0].legend(fontsize=8)
+    ax[1].set_title("last 20 s", fontsize=9)
+    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(out / "angle.png")
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(10, 4.8), dpi=110)
+    w = (two.t > two.t[-1] - 20)
+    ax.plot(two.t[w], two.normal[w], label="2-DoF normal force N")
+    ax.plot(two.t[w], two.friction[w], label="2-DoF friction force")
+    ax.plot(one.t[w], one.friction[w], label="1-DoF friction force", alpha=0.7)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("force on both pins (N)")
+    ax.legend(fontsize=8)
+    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(out / "forces.png")
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(9, 4.8), dpi=110)
+    for lab, s in (("2-DoF", two), ("1-DoF", one)):
+        i0 = s.t.size // 2
+        th = s.theta_deg[i0:] - s.theta_deg[i0:].mean()
+        f = np.fft.rfftfreq(th.size, float(s.t[1] - s.t[0]))
+        a = 2 * np.abs(np.fft.rfft(th * np.hanning(th.size))) / np.hanning(th.size).sum()
+        ax.semilogy(f[(f > 0) & (f < 5)], a[(f > 0) & (f < 5)] + 1e-9, lw=0.7, label=lab)
+    for fm in (0.7, 0.9, 1.1):
+        ax.axvline(fm, color="k", ls=":", lw=0.8)
+    ax.set_xlabel("frequency (Hz) — dotted: the paper's measured 0.7, 0.9, 1.1 Hz")
+    ax.set_ylabel("amplitude of the angle (deg)")
+    ax.legend(fontsize=8)
+    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(out / "spectrum.png")
+    plt.close(fig)
