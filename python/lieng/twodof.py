@@ -156,7 +156,7 @@ def simulate(params: RigParams | None = None, t_end: float = 600.0, preload: flo
     Returns
     -------
     Simulation
-        From rest, the pins stuck to the belt at t = 0.
+        Part 1 at rest and the pins stuck to the belt (x2' = v0) at t = 0.
     """
     p = params or RigParams()
     for name, val in (("t_end", t_end), ("preload", preload), ("v0", v0), ("dt", dt)):
@@ -169,7 +169,7 @@ def simulate(params: RigParams | None = None, t_end: float = 600.0, preload: flo
         raise LiengInputError(f"nsub = {nsub} must be 1..10000")
     M, C, K, kn = matrices(p)
     out = _core.core_twodof(n, dt, nsub, M, C, K, float(preload), kn, p.mus, p.muk, float(v0), p.eta,
-                            np.zeros(4))
+                            np.array([0.0, 0.0, 0.0, float(v0)]))
     x1, v1, x2, v2, fnorm, ffric, state, nswitch, status = out
     if status != 0:
         raise LiengInputError(f"the 2-DoF integration failed (status {int(status)}): check the parameters")
@@ -201,7 +201,7 @@ def onedof(params: RigParams | None = None, load_correction: bool = False, **kw)
     nsub = kw.pop("nsub", 10)
     n = int(round(t_end / dt)) + 1
     out = _core.core_twodof(n, dt, nsub, M, C, K, float(preload), kn, p.mus, p.muk, float(v0), p.eta,
-                            np.zeros(4))
+                            np.array([0.0, 0.0, 0.0, float(v0)]))
     _, _, x2, v2, fnorm, ffric, state, nswitch, status = out
     if status != 0:
         raise LiengInputError(f"the 1-DoF integration failed (status {int(status)})")

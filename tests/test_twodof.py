@@ -1,0 +1,123 @@
+"""The 2-DoF dual-pin-on-disc model (seed 001): modes from an independent
+Lagrangian, the switch model's stick, energy balance, the 1-DoF limit."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.linalg import eigh
+
+from lieng import twodof as T
+from lieng.cli import main
+
+
+def lagrangian_matrices(p):
+    """M and K from the energies written out (independently of lieng):
+    theta1 (Part 1) and x2 (pins); the rod's kinetic energy by quadrature of
+    its linear velocity profile; Hessians by central differences."""
+    n_rod = 2001
+    s = np.linspace(0.0, 1.0, n_rod)
+
+    def kinetic(q):                       # q = (theta1', x2')
+        th, x2 = q
+        v_end = p.r2 * th                 # Part 1 at the connection point
+        v = v_end + (x2 - v_end) * s      # linear velocity distribution along the rod
+        rod = 0.5 * p.m2 * np.trapezoid(v * v, s)
+        return 0.5 * p.m1 * (p.r1 * th) ** 2 + rod
+
+    def potential(q):
+        th, x2 = q
+        return (0.5 * p.k1 * (p.r1 * th) ** 2 + 0.5 * p.k2 * (x2 - p.r2 * th) ** 2
+                + 0.5 * p.k3 * (x2 * math.cos(p.alpha)) ** 2)
+
+    def hessian(f, h=1e-3):
+        H = np.zeros((2, 2))
+        for i in range(2):
+            for j in range(2):
+                e_i, e_j = np.eye(2)[i] * h, np.eye(2)[j] * h
+                H[i, j] = (f(e_i + e_j) - f(e_i - e_j) - f(-e_i + e_j) + f(-e_i - e_j)) / (4 * h * h)
+        return H
+
+    return hessian(kinetic), hessian(potential)
+
+
+def test_modal_frequencies_agree_with_an_independent_lagrangian():
+    for rod_k2 in (10.7e3, 5e3):
+        p = T.RigParams(k2=rod_k2)
+        M, K = lagrangian_matrices(p)
+        f = np.sqrt(eigh(K, M, eigvals_only=True)) / (2 * math.pi)
+        np.testing.assert_allclose(T.modal_frequencies(p), f, rtol=1e-5)
+
+
+def test_k2_reidentified_from_the_measured_modes():
+    k2, f = T.identify_k2(T.RigParams())
+    assert f[1] == pytest.approx(19.53, rel=5e-3)
+    assert f[0] == pytest.approx(0.61, rel=0.1)          # the lever mode is k1's, barely k2's
+    assert 1e3 < k2 < 1e5
+
+
+def test_stick_holds_the_belt_speed_within_eta():
+    p = T.RigParams()
+    s = T.simulate(p, t_end=40.0, preload=80.0)
+    assert s.stick.any() and (~s.stick).any()
+    assert np.max(np.abs(s.v2[s.stick] - s.v0)) <= p.eta
+    # in stick the friction stays within the static capacity; in slip it is muk N
+    assert np.all(np.abs(s.friction[s.stick]) <= p.mus * s.normal[s.stick] * (1 + 1e-9))
+    np.testing.assert_allclose(np.abs(s.friction[~s.stick]), p.muk * s.normal[~s.stick], rtol=1e-12)
+
+
+def test_energy_balance():
+    """E = x'M x'/2 + x K x/2 changes by the work of friction on the pins and
+    of the dampers: checked over 20 s of stick-slip."""
+    p = T.RigParams(c1=0.5, c2=0.3, c3=0.2)
+    s = T.simulate(p, t_end=20.0, preload=80.0, dt=2e-5, nsub=2)
+    M, C, K, _ = T.matrices(p)
+    X = np.vstack([s.x1, s.x2])
+    V = np.vstack([s.v1, s.v2])
+    E = 0.5 * np.einsum("it,ij,jt->t", V, M, V) + 0.5 * np.einsum("it,ij,jt->t", X, K, X)
+    P = s.friction * s.v2 - np.einsum("it,ij,jt->t", V, C, V)
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (P[1:] + P[:-1]) * np.diff(s.t))])
+    scale = np.cumsum(np.abs(P))[-1] * (s.t[1] - s.t[0])
+    assert np.max(np.abs((E - E[0]) - work)) < 2e-3 * scale
+
+
+def test_first_slip_at_the_static_capacity_and_quasi_static_peak():
+    """The pins leave the belt when the friction reaches mus N (event located
+    precisely); the peak angle is near the quasi-static torque balance
+    mus Fn r2 = k1 r1^2 theta (Part 1 slow, the pins nearly rigid)."""
+    p = T.RigParams()
+    s = T.simulate(p, t_end=30.0, preload=80.0, dt=1e-4, nsub=4)
+    k = int(np.argmax(~s.stick))                   # first slip sample
+    assert abs(s.friction[k - 1]) == pytest.approx(p.mus * s.normal[k - 1], rel=2e-3)
+    theta_qs = math.degrees(p.mus * 80.0 * p.r2 / (p.k1 * p.r1 ** 2))
+    assert T.metrics(s)["peak_deg"] == pytest.approx(theta_qs, rel=0.1)
+
+
+def test_onedof_limit_is_the_classical_stick_slip():
+    """The 1-DoF rig (constant N): undamped stick-slip drops by 2 (mus - muk) N / k
+    referred to the pins, so the amplitude is (mus - muk) N / k_eq."""
+    p = T.RigParams(c1=0.0, c2=0.0, c3=0.0)
+    s = T.onedof(p, t_end=120.0, preload=80.0)
+    rho = p.r2 / p.r1
+    k_eq = p.k1 / rho ** 2 + p.k3 * math.cos(p.alpha) ** 2
+    amp_x2 = (p.mus - p.muk) * 80.0 / k_eq
+    assert T.metrics(s)["fluct_deg"] == pytest.approx(math.degrees(amp_x2 / rho / p.r1), rel=0.05)
+    assert np.all(s.normal == 80.0)
+
+
+def test_cli_json_has_the_issue_keys(tmp_path, capsys):
+    code = main(["twodof", "--preload", "80", "--rpm", "0.1", "--t-end", "60", "--json", "-o", str(tmp_path / "o")])
+    assert code == 0
+    d = json.loads(capsys.readouterr().out)
+    for k in ("modal_hz", "peak_deg", "fluct_deg", "dominant_hz", "normal_force", "onedof"):
+        assert k in d
+    assert set(d["normal_force"]) == {"mean", "std"} and "peak_deg" in d["onedof"]
+    assert d["belt_m_s"] == pytest.approx(8.38e-4, rel=1e-3)
+    for f in ("twodof.json", "angle.png", "forces.png", "spectrum.png"):
+        assert (tmp_path / "o" / f).exists()
+
+
+def test_cli_bad_input_exit_2(tmp_path, capsys):
+    assert main(["twodof", "--preload", "-5"]) == 2
+    assert "--preload" in capsys.readouterr().err
