@@ -48,6 +48,7 @@ bench: install
 	$(VPY) tests/benchmarks/bench_point.py
 	$(VPY) tests/benchmarks/bench_trc.py
 	$(VPY) tests/benchmarks/bench_sweep.py
+	$(VPY) tests/benchmarks/bench_twodof.py
 
 clean:
 	rm -rf build out .pytest_cache
