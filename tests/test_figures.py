@@ -1,8 +1,5 @@
 """`lieng figures`: every theoretical figure the text describes, from a deck in cards/, captioned."""
 
-import os
-
-import pytest
 from PIL import Image
 
 from lieng.cli import main

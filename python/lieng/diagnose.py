@@ -712,16 +712,6 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
 
 # ------------------------------------------------------------------ outputs
 
-def _finish(fig, ax, cap, path) -> None:
-    import matplotlib.pyplot as plt
-
-    ax.legend(fontsize=8)
-    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(path)
-    plt.close(fig)
-
-
 def _amp_spectrum(sig, dt):
     s = sig - sig.mean()
     w = np.hanning(s.size)
@@ -736,6 +726,8 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from .graf import finish
 
     out = Path(outdir)
     (out / "diagnosis.json").write_text(json.dumps(d.to_json(), indent=2) + "\n", encoding="utf-8")
@@ -754,7 +746,7 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("tangential displacement x (mm)")
     ax.set_title("Measured trace against the simulations (dashed: start of the held-out 30 %)")
-    _finish(fig, ax, cap, out / "trace.png")
+    finish(fig, ax, cap, out / "trace.png")
     dt = float(t[1] - t[0])
     fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
     for lab, arr, kw in curves:
@@ -763,7 +755,7 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("velocity / natural frequency (mm)")
     ax.set_title("Phase plane (Lienard plane)")
-    _finish(fig, ax, cap, out / "phase_plane.png")
+    finish(fig, ax, cap, out / "phase_plane.png")
     fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
     for lab, arr, kw in curves:
         if arr is None:
@@ -777,7 +769,7 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     ax.set_xlabel("sliding velocity v0 - x' (mm/s)")
     ax.set_ylabel("friction / stiffness F = x + x''/wn^2 (mm)")
     ax.set_title("Characteristic during slip (reverse construction): a loop means two branches")
-    _finish(fig, ax, cap, out / "characteristic.png")
+    finish(fig, ax, cap, out / "characteristic.png")
     fig, ax = plt.subplots(figsize=(8, 5.6), dpi=110)
     for lab, arr, kw in curves:
         if arr is None:
@@ -788,7 +780,7 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("amplitude (mm)")
     ax.set_title("Spectrum")
-    _finish(fig, ax, cap, out / "spectrum.png")
+    finish(fig, ax, cap, out / "spectrum.png")
     lines = [f"# lieng diagnose: {source}", "",
              f"**Effect: `{d.effect}`** ({d.reason}).", "",
              f"* baseline error e0 = {d.baseline_error:.4g}, extended error e1 = {d.extended_error:.4g}, "

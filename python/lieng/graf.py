@@ -184,3 +184,16 @@ def trc_plots(result, outdir) -> list[Path]:
                       caption=cap, labels=hn[: 1 + two], styles=[{"lw": 0.8, "marker": ".", "ms": 3}] * 2,
                       xlim=_robust_xlim(r.amt[inner], r.amtn[inner] if two else r.amt[inner])))
     return paths
+
+
+def finish(fig, ax, caption: str, path) -> None:
+    """Legend(s), a caption line under the plot, save as PNG and close:
+    the last steps of every analysis plot (diagnose, twodof).  ``ax`` may be
+    one axis or a sequence of axes."""
+    for a in (ax if isinstance(ax, (list, tuple, np.ndarray)) else [ax]):
+        if a.get_legend_handles_labels()[0]:
+            a.legend(fontsize=8)
+    fig.text(0.01, 0.005, caption, fontsize=7, color="0.3")
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(path)
+    plt.close(fig)

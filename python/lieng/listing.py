@@ -9,10 +9,6 @@ it; trailing blanks are dropped, as a printer does not print them.
 
 from __future__ import annotations
 
-import math
-
-import numpy as np
-
 from .cards import write_record
 
 __all__ = ["FORMATS_LIENG1", "FORMATS_MLIEN", "FORMATS_TRC", "lieng1_listing", "mlien_listing", "trc_listing"]

@@ -159,6 +159,15 @@ def simulate(params: RigParams | None = None, t_end: float = 600.0, preload: flo
         Part 1 at rest and the pins stuck to the belt (x2' = v0) at t = 0.
     """
     p = params or RigParams()
+    M, C, K, kn = matrices(p)
+    t, x1, v1, x2, v2, fnorm, ffric, state, nswitch = _run(M, C, K, kn, p, preload, v0, t_end, dt, nsub)
+    return Simulation(t, x1, x2, v1, v2, np.degrees(x1 / p.r1), fnorm, ffric, state, nswitch, p,
+                      float(preload), float(v0))
+
+
+def _run(M, C, K, kn, p, preload, v0, t_end, dt, nsub):
+    """Check the run's numbers and call the compiled core from Part 1 at rest
+    and the pins on the belt; returns t and the core's series."""
     for name, val in (("t_end", t_end), ("preload", preload), ("v0", v0), ("dt", dt)):
         if not (math.isfinite(val) and val > 0):
             raise LiengInputError(f"--{name.replace('_', '-')} {val}: must be a positive number")
@@ -167,15 +176,12 @@ def simulate(params: RigParams | None = None, t_end: float = 600.0, preload: flo
         raise LiengInputError(f"t_end / dt = {n}: too many samples (at most 2e7)")
     if not 1 <= nsub <= 10000:
         raise LiengInputError(f"nsub = {nsub} must be 1..10000")
-    M, C, K, kn = matrices(p)
     out = _core.core_twodof(n, dt, nsub, M, C, K, float(preload), kn, p.mus, p.muk, float(v0), p.eta,
                             np.array([0.0, 0.0, 0.0, float(v0)]))
     x1, v1, x2, v2, fnorm, ffric, state, nswitch, status = out
     if status != 0:
-        raise LiengInputError(f"the 2-DoF integration failed (status {int(status)}): check the parameters")
-    t = np.arange(n) * dt
-    return Simulation(t, x1, x2, v1, v2, np.degrees(x1 / p.r1), fnorm, ffric, state.astype(bool), int(nswitch), p,
-                      float(preload), float(v0))
+        raise LiengInputError(f"the integration failed (status {int(status)}): check the parameters")
+    return np.arange(n) * dt, x1, v1, x2, v2, fnorm, ffric, state.astype(bool), int(nswitch)
 
 
 def onedof(params: RigParams | None = None, load_correction: bool = False, **kw) -> Simulation:
@@ -194,21 +200,13 @@ def onedof(params: RigParams | None = None, load_correction: bool = False, **kw)
     M = np.array([[1.0, 0.0], [0.0, m_eq]])
     K = np.array([[1.0, 0.0], [0.0, k_eq]])
     C = np.array([[0.0, 0.0], [0.0, c_eq]])
-    t_end = kw.pop("t_end", 600.0)
     preload = kw.pop("preload", 80.0)
     v0 = kw.pop("v0", rpm_to_belt(0.1))
-    dt = kw.pop("dt", 1e-3)
-    nsub = kw.pop("nsub", 10)
-    n = int(round(t_end / dt)) + 1
-    out = _core.core_twodof(n, dt, nsub, M, C, K, float(preload), kn, p.mus, p.muk, float(v0), p.eta,
-                            np.array([0.0, 0.0, 0.0, float(v0)]))
-    _, _, x2, v2, fnorm, ffric, state, nswitch, status = out
-    if status != 0:
-        raise LiengInputError(f"the 1-DoF integration failed (status {int(status)})")
-    t = np.arange(n) * dt
+    t, _, _, x2, v2, fnorm, ffric, state, nswitch = _run(M, C, K, kn, p, preload, v0, kw.pop("t_end", 600.0),
+                                                         kw.pop("dt", 1e-3), kw.pop("nsub", 10))
     x1 = x2 / rho
-    return Simulation(t, x1, x2, v2 / rho, v2, np.degrees(x1 / p.r1), fnorm, ffric, state.astype(bool),
-                      int(nswitch), p, float(preload), float(v0))
+    return Simulation(t, x1, x2, v2 / rho, v2, np.degrees(x1 / p.r1), fnorm, ffric, state, nswitch, p,
+                      float(preload), float(v0))
 
 
 def _dominant(sig, dt, fmin=0.05):
@@ -277,6 +275,8 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from .graf import finish
+
     out = Path(outdir)
     (out / "twodof.json").write_text(json.dumps(res, indent=2) + "\n", encoding="utf-8")
     cap = (f"lieng twodof: dual-pin-on-disc rig (seed 001), Fn = {res['preload_n']:g} N, {res['rpm']:g} rpm; "
@@ -294,12 +294,8 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
     ax[0].set_ylabel("angle of Part 1 (deg)")
     ax[1].set_xlabel("time (s)")
     ax[1].set_ylabel("angle of Part 1 (deg)")
-    ax[0].legend(fontsize=8)
     ax[1].set_title("last 20 s", fontsize=9)
-    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(out / "angle.png")
-    plt.close(fig)
+    finish(fig, list(ax), cap, out / "angle.png")
     fig, ax = plt.subplots(figsize=(10, 4.8), dpi=110)
     w = (two.t > two.t[-1] - 20)
     ax.plot(two.t[w], two.normal[w], label="2-DoF normal force N")
@@ -307,11 +303,7 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
     ax.plot(one.t[w], one.friction[w], label="1-DoF friction force", alpha=0.7)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("force on both pins (N)")
-    ax.legend(fontsize=8)
-    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(out / "forces.png")
-    plt.close(fig)
+    finish(fig, ax, cap, out / "forces.png")
     fig, ax = plt.subplots(figsize=(9, 4.8), dpi=110)
     for lab, s in (("2-DoF", two), ("1-DoF", one)):
         i0 = s.t.size // 2
@@ -323,8 +315,4 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
         ax.axvline(fm, color="k", ls=":", lw=0.8)
     ax.set_xlabel("frequency (Hz) — dotted: the paper's measured 0.7, 0.9, 1.1 Hz")
     ax.set_ylabel("amplitude of the angle (deg)")
-    ax.legend(fontsize=8)
-    fig.text(0.01, 0.005, cap, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(out / "spectrum.png")
-    plt.close(fig)
+    finish(fig, ax, cap, out / "spectrum.png")

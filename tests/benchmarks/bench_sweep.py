@@ -71,7 +71,7 @@ def main():
     x, v = characteristic()
     v0s = np.linspace(0.5, 30.0, 200)
     t0 = time.perf_counter()
-    ours = cycles.sweep_v0(x, v, v0s, progress=False, find_voc=False)
+    cycles.sweep_v0(x, v, v0s, progress=False, find_voc=False)
     t_ours = time.perf_counter() - t0
     sub = v0s[::40]
     t0 = time.perf_counter()
