@@ -120,7 +120,7 @@ contains
       real(wp), intent(inout) :: t             !< T, advanced
       integer, intent(out) :: status           !< st_ok or st_no_return
       integer :: j, k, ev, it
-      real(wp) :: a, b, ylo, yhi, u0, y0, ta, tb, tm, u, yy, ua, ya, t0, ymove, yref
+      real(wp) :: a, b, ylo, yhi, u0, y0, ta, tb, tm, u, yy, ua, ya, t0, ymove, yref, hb
       logical :: hit
 
       status = st_ok
@@ -136,8 +136,12 @@ contains
          yref = y0
          hit = .false.
          ev = 0
-         do k = 1, 100000
-            tb = ta + hstep
+         ! a steep band with a growing mode (b > 2): exp(l1 t) must not overflow
+         ! between samples, so the search step shrinks to 20/l1
+         hb = hstep
+         if (b > 2.0_wp) hb = min(hstep, 20.0_wp/(0.5_wp*b + sqrt(0.25_wp*b*b - 1.0_wp)))
+         do k = 1, 1000000
+            tb = ta + hb
             call linear_flow(b, u0, y0, tb, u, yy)
             call classify(yy, yref, ev)
             if (ev /= 0) then
