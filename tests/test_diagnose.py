@@ -104,3 +104,31 @@ def test_bad_input(tmp_path, capsys):
     code = main(["diagnose", str(p), "--v0", repr(short.v0), "--fn", repr(short.fn), "-o", str(tmp_path / "n")])
     err = capsys.readouterr().err
     assert code == 2 and "cycles" in err and not (tmp_path / "n").exists()
+
+
+def test_a_thesis_style_trc_deck_is_accepted(tmp_path, capsys):
+    """A TRC readings deck (App. 7) of an effect-free record: diagnose reads
+    it (OMNH gives fn, XN becomes y), resamples the readings and finds no
+    effect."""
+    import math
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from reference import trc_readings_deck
+
+    rec = synthesize("none", 0, cycles=12)
+    m = 3                                       # 20 readings per natural period, 200 readings
+    t, x = rec.t[-200 * m::m] - rec.t[-200 * m], rec.x[-200 * m::m]    # past the start-up
+    dt = float(t[1] - t[0])
+    lines, _ = trc_readings_deck(t, x, np.zeros_like(x), omnh=2 * math.pi * rec.fn, omnv=1.0,
+                                 vel=1.0 / (100 * dt), sensf=10.0)
+    deck = tmp_path / "rec.dat"
+    deck.write_text("\n".join(lines) + "\n")
+    code = main(["diagnose", str(deck), "--v0", repr(rec.v0), "-o", str(tmp_path / "o"), "-q"])
+    assert code == 0, capsys.readouterr().err
+    d = json.loads((tmp_path / "o" / "diagnosis.json").read_text())
+    assert d["effect"] == "none"
+    # without --v0 a deck is refused (it has no drive velocity)
+    assert main(["diagnose", str(deck), "-o", str(tmp_path / "p")]) == 2
+    assert "--v0" in capsys.readouterr().err and not (tmp_path / "p").exists()

@@ -191,14 +191,21 @@ def _sweep(args) -> int:
 def _diagnose(args) -> int:
     import json
 
-    from .diagnose import diagnose, read_record, write_outputs
+    from .diagnose import diagnose, read_record, record_from_trc_deck, write_outputs
     from .outputs import staged_outdir
 
-    if args.fn is None or not args.fn > 0:
-        raise LiengInputError(f"--fn {args.fn}: the natural frequency of the tangential mode must be positive (Hz)")
-    rec = read_record(args.data, v0=args.v0)
+    fn = args.fn
+    if _is_csv(args.data):
+        if fn is None:
+            raise LiengInputError(f"{args.data}: --fn (natural frequency of the tangential mode, Hz) is needed")
+        rec = read_record(args.data, v0=args.v0)
+    else:                                   # a thesis-style TRC deck: OMNH gives fn
+        rec, fn_deck = record_from_trc_deck(args.data, args.v0)
+        fn = fn_deck if fn is None else fn
+    if not fn > 0:
+        raise LiengInputError(f"--fn {fn}: the natural frequency of the tangential mode must be positive (Hz)")
     keep: dict = {}
-    d = diagnose(rec, args.fn, args.fnv, keep=keep)
+    d = diagnose(rec, fn, args.fnv, keep=keep)
     with staged_outdir(args.outdir) as tmp:
         write_outputs(d, keep, tmp, str(args.data))
     if args.json:
@@ -331,9 +338,10 @@ def build_parser() -> argparse.ArgumentParser:
                                     "effect it misses (load_variation, twin_branch, static_ageing, triggering, "
                                     "drive_modulation or none), fit the extended model and measure the gain on "
                                     "the last 30 %% of the record.")
-    dg.add_argument("data", help="CSV with t (s), x (mm), optional y (mm), optional v0 (mm/s)")
+    dg.add_argument("data", help="CSV with t (s), x (mm), optional y (mm), optional v0 (mm/s), or a TRC deck")
     dg.add_argument("--v0", type=float, help="nominal drive velocity (mm/s) when there is no v0 column")
-    dg.add_argument("--fn", type=float, required=True, help="natural frequency of the tangential mode (Hz)")
+    dg.add_argument("--fn", type=float, help="natural frequency of the tangential mode (Hz); a TRC deck gives "
+                    "it (OMNH)")
     dg.add_argument("--fnv", type=float, help="natural frequency of the normal mode (Hz), with y")
     dg.add_argument("-o", "--outdir", required=True, help="output directory")
     dg.add_argument("--json", action="store_true", help="print diagnosis.json")

@@ -71,7 +71,8 @@ from . import _core
 from .errors import LiengInputError
 from .table import read_columns
 
-__all__ = ["EFFECTS", "THRESHOLDS", "Record", "Diagnosis", "read_record", "cycles", "diagnose", "simulate"]
+__all__ = ["EFFECTS", "THRESHOLDS", "Record", "Diagnosis", "read_record", "record_from_trc_deck", "cycles",
+           "diagnose", "simulate"]
 
 EFFECTS = ("load_variation", "twin_branch", "static_ageing", "triggering", "drive_modulation")
 THRESHOLDS = {"twin_branch": 0.04, "load_variation": 0.02, "static_ageing": 0.05, "triggering": 0.02,
@@ -136,6 +137,31 @@ def read_record(path, v0: float | None = None) -> Record:
         vcol_arr = vcol
     return Record(t=t, x=a["x"], y=a.get("y"), v0=vcol_arr, source=str(path),
                   v0_nominal=float(v0) if vcol_arr is None else float(np.mean(vcol_arr)))
+
+
+def record_from_trc_deck(path, v0: float | None) -> tuple[Record, float]:
+    """A thesis-style TRC deck (App. 7) as a record: the calibrated readings
+    T, X, XN (s, mm, mm; XN becomes y) resampled linearly onto an even grid
+    at the median reading interval.  Returns the record and the natural
+    frequency the deck gives (OMNH, rad/s, in Hz)."""
+    from .cards import read_deck
+
+    deck = read_deck(path, program="trc")
+    t, x, xn = deck.calibrated()
+    if np.any(np.diff(t) <= 0):
+        _fail(f"{path}: the readings' times do not increase (NT): cannot be resampled")
+    if v0 is None:
+        _fail(f"{path}: a TRC deck does not give the drive velocity: --v0 is needed")
+    if not (math.isfinite(v0) and v0 > 0):
+        _fail(f"--v0 {v0}: the drive velocity must be a positive number (mm/s)")
+    dt = float(np.median(np.diff(t)))
+    tu = np.arange(t[0], t[-1] + 0.5 * dt, dt)
+    tu = tu[tu <= t[-1]]
+    y = np.interp(tu, t, xn) if np.any(xn != 0) else None
+    rec = Record(t=tu, x=np.interp(tu, t, x), y=y, source=str(path), v0_nominal=float(v0))
+    if rec.t.size < 50:
+        _fail(f"{path}: {rec.t.size} samples after resampling: too short for stick-slip analysis")
+    return rec, abs(deck.omnh) / (2 * math.pi)
 
 
 # ------------------------------------------------------------------ signal
@@ -429,7 +455,7 @@ def _features(t, x, y, vd, fn, sel):
     """Cycle features and statistics on the samples sel (a slice)."""
     tt, xx = t[sel], x[sel]
     yy = None if y is None else y[sel]
-    st, aux = statistics(tt, xx, yy, vd[sel], fn, min_cycles=2)
+    st, aux = statistics(tt, xx, yy, vd[sel], fn, min_cycles=1)
     c = aux["cycles"]
     f = {"peak_mean": np.mean(c.peak), "peak_std": np.std(c.peak), "trough_mean": np.mean(c.trough),
          "trough_std": np.std(c.trough), "period_mean": np.mean(c.period), "period_std": np.std(c.period),
@@ -469,7 +495,7 @@ def _fit_fk(p: Params, t, vd, fn, target_trough, ylow=None, it=6):
     for _ in range(it):
         x, _, _ = simulate(p, t, vd, fn, ylow)
         try:
-            c = cycles(t, x, fn, vd)
+            c = cycles(t, x, fn, vd, min_cycles=1)
             tr = float(np.mean(c.trough))
         except LiengInputError:
             tr = p.fs
@@ -544,7 +570,7 @@ def _candidates(effect, base: Params, st, aux, t, x, y, vd, fn, ylow, tr):
     """Extended models for ``effect``, fitted on the training samples ``tr``:
     the estimate the evidence gives and a few variants of it (the training
     error picks one)."""
-    ctr = cycles(t[tr], x[tr], fn, vd[tr])
+    ctr = cycles(t[tr], x[tr], fn, vd[tr], min_cycles=1)
     target = float(np.mean(ctr.trough))
     amp = aux["amp"]
     out = []
@@ -649,11 +675,12 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
 
     # the baseline, fitted on the training part: the first 70 % of the
     # record, less if that would leave fewer than three cycles to test on
+    # (two in a record of fewer than seven)
     ntr = int(TRAIN * t.size)
-    if np.count_nonzero(c.peak_i > ntr) < 4 and c.peak_i.size >= 8:
-        ntr = int(c.peak_i[-4]) - 1
+    if np.count_nonzero(c.peak_i > ntr) < 4:
+        ntr = int(c.peak_i[-4 if c.peak_i.size >= 8 else -3]) - 1
     tr = slice(0, ntr)
-    ctr = cycles(t[tr], x[tr], fn, vd[tr])
+    ctr = cycles(t[tr], x[tr], fn, vd[tr], min_cycles=1)
     fs = float(np.median(ctr.peak))
     base = Params(fs=fs, fk=0.5 * (float(np.median(ctr.trough)) + fs))
     if y is not None:
