@@ -555,6 +555,7 @@ class Diagnosis:
     gain: float
     features: dict = field(default_factory=dict)
     reason: str = ""
+    warnings: list = field(default_factory=list)
     baseline_statistics: dict = field(default_factory=dict)
 
     def to_json(self) -> dict:
@@ -563,7 +564,7 @@ class Diagnosis:
                 "baseline_error": self.baseline_error, "extended_error": self.extended_error, "gain": self.gain,
                 "metric": METRIC, "fitted": fitted, "statistics": self.statistics,
                 "baseline_statistics": self.baseline_statistics, "thresholds": THRESHOLDS,
-                "features": self.features, "reason": self.reason}
+                "features": self.features, "reason": self.reason, "warnings": self.warnings}
 
 
 def _candidates(effect, base: Params, st, aux, t, x, y, vd, fn, ylow, tr):
@@ -689,10 +690,21 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
 
     # the evidence: what the record shows and the baseline does not
     xb, _, _, yb = simulate(base, t, vd, fn, with_y=True)
+    warnings = []
     try:
-        st_base, _ = statistics(t, xb, yb if y is not None else None, vd, fn)
+        st_base, aux_b = statistics(t, xb, yb if y is not None else None, vd, fn)
+        # the slip lasts about half a natural period: a mismatch says --fn is off
+        slip_rec = float(np.median(t[c.trough_i] - t[c.peak_i[:c.trough_i.size]]))
+        cb = aux_b["cycles"]
+        slip_sim = float(np.median(t[cb.trough_i] - t[cb.peak_i[:cb.trough_i.size]]))
+        if abs(slip_rec / slip_sim - 1.0) > 0.1:
+            warnings.append(f"the slips last {slip_rec:.4g} s in the record but {slip_sim:.4g} s in the baseline "
+                            f"with --fn {fn:g} Hz: check --fn (the slip-shape evidence needs it to a few per cent)")
     except LiengInputError:
         st_base = {k: 0.0 for k in EFFECTS}
+    if 1.0 / (fn * dt) < 30:
+        warnings.append(f"{1.0 / (fn * dt):.1f} samples per natural period: the twin and load evidence needs about "
+                        f"30 to resolve the slips")
     scores = {k: abs(st[k] - st_base[k]) / THRESHOLDS[k] for k in EFFECTS}
     if y is None:
         scores["load_variation"] = 0.0
@@ -734,7 +746,8 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
     feats = {"record": test.meas[0]}
     return Diagnosis(effect=effect, scores=scores, statistics={k: float(v) for k, v in st.items()}, baseline=base,
                      extended=ext, baseline_error=float(e0), extended_error=float(e1), gain=float(gain),
-                     features=feats, reason=reason, baseline_statistics={k: float(v) for k, v in st_base.items()})
+                     features=feats, reason=reason, baseline_statistics={k: float(v) for k, v in st_base.items()},
+                     warnings=warnings)
 
 
 # ------------------------------------------------------------------ outputs
@@ -810,6 +823,7 @@ def write_outputs(d: Diagnosis, keep: dict, outdir, source: str) -> None:
     finish(fig, ax, cap, out / "spectrum.png")
     lines = [f"# lieng diagnose: {source}", "",
              f"**Effect: `{d.effect}`** ({d.reason}).", "",
+             *[f"> warning: {w}" for w in d.warnings], *([""] if d.warnings else []),
              f"* baseline error e0 = {d.baseline_error:.4g}, extended error e1 = {d.extended_error:.4g}, "
              f"gain = 1 - e1/e0 = {d.gain:.3f}",
              f"* metric: {METRIC}", "",
