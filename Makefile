@@ -39,6 +39,8 @@ demo: install
 	$(LIENG) run lieng1 cards/lieng1_demo.dat -o out/lieng1
 	$(LIENG) run mlien cards/mlien_a9_7.dat -o out/mlien
 	$(LIENG) run trc cards/trc_demo.dat -o out/trc
+	$(LIENG) figures -o out/figures
+	$(LIENG) twodof --preload 80 -o out/twodof
 	@echo "demo written to out/"
 
 test: install
