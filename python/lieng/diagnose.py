@@ -625,13 +625,17 @@ def _candidates(effect, base: Params, st, aux, t, x, y, vd, fn, ylow, tr):
         for s in (0.0, 0.5, 1.0):
             out.append(fk(base.copy(trig_eps=s * eps, trig_ph=ph, **kw)))
     elif effect == "drive_modulation":
-        segs = list(_stick_segments(ctr))
-        mids = np.array([np.mean(t[tr][seg]) for seg in segs])
-        rat = np.array([np.polyfit(t[tr][seg], x[tr][seg], 1)[0] / np.mean(vd[tr][seg]) for seg in segs])
+        # the stick velocity is the drive: fit v/vd = c0 (1 + a sin(2 pi f t + ph)) to the smoothed velocity
+        # inside the sticks, f on a grid from well below the stick-slip frequency to half the natural one
+        tt = t[tr]
+        idx = np.concatenate(list(_stick_segments(ctr)))
+        ts, rat = tt[idx], ctr.v[idx] / vd[tr][idx]
         f_ss = 1.0 / np.mean(ctr.period)
+        span = float(tt[-1] - tt[0])
+        nf = int(min(4000, max(400, 4 * span * 0.5 * fn)))
         best_fit = None
-        for f in np.linspace(0.05 * f_ss, 0.95 * f_ss, 400):
-            A = np.column_stack([np.ones(mids.size), _sin(mids, f, 0.0), np.cos(2 * math.pi * f * mids)])
+        for f in np.geomspace(0.05 * f_ss, 0.5 * fn, nf):
+            A = np.column_stack([np.ones(ts.size), _sin(ts, f, 0.0), np.cos(2 * math.pi * f * ts)])
             coef = np.linalg.lstsq(A, rat, rcond=None)[0]
             r = float(np.sum((A @ coef - rat) ** 2))
             if best_fit is None or r < best_fit[0]:
