@@ -16,15 +16,22 @@ The path (each step documented in ``report.md``):
    is named when its score is >= 1, else ``none``; see below for the
    score and for several):
 
-   * ``twin_branch``: the reverse construction gives the friction during slip,
-     F = x + x''/wn**2 (the centre of curvature of the trajectory in the
-     Lienard plane, TRC's XX).  F is fitted by a quadratic in the relative
-     velocity plus a step between the accelerating and decelerating halves
-     of each slip; the step (the width of the loop of the experimental
-     characteristic, ch. 4.1) over the stick-slip amplitude, threshold 0.04.
-   * ``load_variation``: the same fit with a term in the low-passed normal
-     displacement y; its contribution (coefficient x std of y in slip) over
-     the amplitude, threshold 0.02.
+   * ``twin_branch``: the step of the friction between the accelerating and
+     decelerating halves of the slips (the width of the loop of the
+     experimental characteristic, ch. 4.1), fitted to x itself: in each
+     slip x is an arc of the free oscillation about the friction level, and
+     the level steps by dF where the sliding velocity peaks (linear least
+     squares, no derivatives, so it holds at coarse sampling; fitting the
+     frequency too was tried: it absorbs half the step); dF over the
+     stick-slip amplitude, threshold 0.05, counted only when positive (the
+     decelerating branch above the accelerating one, as the thesis found;
+     a load that follows x gives a negative step).
+   * ``load_variation``: the reverse construction gives the friction during
+     slip, F = x + x''/wn**2 (the centre of curvature of the trajectory in
+     the Lienard plane, TRC's XX); F is fitted by a quadratic in the
+     relative velocity, a branch step and a term in the low-passed normal
+     displacement y; the y term's contribution (coefficient x std of y in
+     slip) over the amplitude, threshold 0.02.
    * ``static_ageing``: the peak against the log of the drive velocity during
      the stick (which sets the stick time); the change of the peak over the
      drive range, over the amplitude, threshold 0.05.  Needs a varying drive
@@ -44,9 +51,7 @@ The path (each step documented in ``report.md``):
    itself makes of a clean 1-DoF record (smoothing, trimming) is not
    evidence.  The slip-shape statistics (twin, load) are read last: the
    other effects change the shape of a slip too and leave traces there, the
-   converse is not true.  Within a group the largest score wins.  (When y
-   follows x, the branch step and y are nearly collinear in a slip: twin
-   and load can then both fire, and the larger score can be the wrong one.)
+   converse is not true.  Within a group the largest score wins.
 4. **Extension** with the named effect, fitted on the first 70 % of the
    record.
 5. **Gain** on the last 30 %: the error is the RMS of normalised differences
@@ -75,7 +80,7 @@ __all__ = ["EFFECTS", "THRESHOLDS", "Record", "Diagnosis", "read_record", "recor
            "diagnose", "simulate"]
 
 EFFECTS = ("load_variation", "twin_branch", "static_ageing", "triggering", "drive_modulation")
-THRESHOLDS = {"twin_branch": 0.04, "load_variation": 0.02, "static_ageing": 0.05, "triggering": 0.02,
+THRESHOLDS = {"twin_branch": 0.05, "load_variation": 0.02, "static_ageing": 0.05, "triggering": 0.02,
               "drive_modulation": 0.08}
 #: the statistics read from the shape of the slips (see diagnose)
 SLIP_SHAPE = ("twin_branch", "load_variation")
@@ -279,6 +284,41 @@ def _slip_design(c: Cycles, t, x, vd, fn):
     return idx, F[idx], cols
 
 
+def _branch_step(c: Cycles, t, x, vd, fn) -> float:
+    """The step of the friction between the accelerating and decelerating
+    halves of the slips, fitted to x itself (no derivatives): in each slip
+    x = F1 + A cos(wn t) + B sin(wn t) + dF (1 - cos(wn (t - t*))) H(t - t*),
+    t* the peak of the sliding velocity, F1, A, B per slip, dF common, least
+    squares (linear).  dF > 0: the decelerating branch lies above the
+    accelerating one (the twin mechanism, ch. 4.1); a friction that follows a
+    load rising with x gives dF < 0."""
+    slips = []
+    for p, q in c.slip:
+        seg = np.arange(p + 1, q)
+        if seg.size >= 6:
+            ks = seg[int(np.argmax(vd[seg] - c.v[seg]))]
+            slips.append((seg, t[seg] - t[p], t[ks] - t[p]))
+    if not slips:
+        return 0.0
+    n = sum(sg.size for sg, _, _ in slips)
+    rhs = np.concatenate([x[sg] for sg, _, _ in slips])
+
+    def fit(wn):
+        A = np.zeros((n, 3 * len(slips) + 1))
+        r0 = 0
+        for j, (sg, tt, ts) in enumerate(slips):
+            rows = slice(r0, r0 + sg.size)
+            A[rows, 3 * j] = 1.0
+            A[rows, 3 * j + 1] = np.cos(wn * tt)
+            A[rows, 3 * j + 2] = np.sin(wn * tt)
+            A[rows, -1] = np.where(tt > ts, 1.0 - np.cos(wn * (tt - ts)), 0.0)
+            r0 += sg.size
+        coef = np.linalg.lstsq(A, rhs, rcond=None)[0]
+        return float(np.sum((A @ coef - rhs) ** 2)), float(coef[-1])
+
+    return fit(2 * math.pi * fn)[1]
+
+
 def _stick_segments(c: Cycles):
     """The inner part of each stick (trough to next peak, less its first
     quarter and last eighth), as index arrays of at least 5 samples."""
@@ -353,7 +393,7 @@ def statistics(t, x, y, vd, fn, min_cycles: int = 3) -> tuple[dict, dict]:
             cols.append(yl / yl.std())
     A = np.column_stack(cols)
     coef = np.linalg.lstsq(A, F, rcond=None)[0]
-    st["twin_branch"] = float(coef[3]) / amp
+    st["twin_branch"] = _branch_step(c, t, x, vd, fn) / amp
     st["load_variation"] = abs(float(coef[ycol])) / amp if ycol is not None else 0.0
     # ageing: peak against log drive during the stick
     vst = _stick_drive(c, vd)
@@ -580,7 +620,7 @@ def _candidates(effect, base: Params, st, aux, t, x, y, vd, fn, ylow, tr):
         return _fit_fk(p, t[tr], vd[tr], fn, target, **kw)
 
     if effect == "twin_branch":
-        d0 = 2.0 * st["twin_branch"] * amp
+        d0 = st["twin_branch"] * amp
         for s in (0.6, 1.0, 1.5):
             out.append(fk(base.copy(delta=s * d0)))
     elif effect == "load_variation":
@@ -710,6 +750,8 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
         warnings.append(f"{1.0 / (fn * dt):.1f} samples per natural period: the twin and load evidence needs about "
                         f"30 to resolve the slips")
     scores = {k: abs(st[k] - st_base[k]) / THRESHOLDS[k] for k in EFFECTS}
+    # the twin loop has a direction (the decelerating branch above): only a positive step counts
+    scores["twin_branch"] = max(st["twin_branch"] - st_base["twin_branch"], 0.0) / THRESHOLDS["twin_branch"]
     if y is None:
         scores["load_variation"] = 0.0
     best = max(scores, key=scores.get)
