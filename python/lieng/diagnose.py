@@ -746,9 +746,9 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
                             f"with --fn {fn:g} Hz: check --fn (the slip-shape evidence needs it to a few per cent)")
     except LiengInputError:
         st_base = {k: 0.0 for k in EFFECTS}
-    if 1.0 / (fn * dt) < 30:
-        warnings.append(f"{1.0 / (fn * dt):.1f} samples per natural period: the twin and load evidence needs about "
-                        f"30 to resolve the slips")
+    if 1.0 / (fn * dt) < 20:
+        warnings.append(f"{1.0 / (fn * dt):.1f} samples per natural period: the load evidence needs about "
+                        f"20 to resolve the slips")
     scores = {k: abs(st[k] - st_base[k]) / THRESHOLDS[k] for k in EFFECTS}
     # the twin loop has a direction (the decelerating branch above): only a positive step counts
     scores["twin_branch"] = max(st["twin_branch"] - st_base["twin_branch"], 0.0) / THRESHOLDS["twin_branch"]
