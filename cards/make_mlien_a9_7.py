@@ -31,3 +31,40 @@ for arr in (xs, ys):
 lines.append(f"{1.25:10.2f}{30000.0:10.2f}{0.02:10.2f}{0.2:10.2f}")
 open("mlien_a9_7.dat", "w").write("\n".join(lines) + "\n")
 print(n, "points")
+
+# --- mlien_a9_7_decay.dat: the dying-out oscillation.
+# Ch. 2.4.1.2: "In case of a stable origin a trajectory approaching it
+# stabilizes itself on the triggering cycle instead of the origin", and App. 9:
+# A9-7 "shows how the triggering oscillation can produce the observed dying-out
+# oscillation after the slip part of stick-slip".  Fig. 2.21's line centred at
+# 22 mm/s (FS 10, FM 6, EPS 0.5, UM 20, rising slope C = 0.1: damping ratio
+# D = C/2 = 0.05 about a stable origin, inside the thesis's measured range
+# 0.0089-0.059); OMEGA = -0.02 so that the drive RISES from VO = 22 (stick-slip
+# on the stable limit cycle) past v_oc (the cycle vanishes) to AMPV0 = 40: the
+# oscillation then dies out, by exp(-2 pi D / sqrt(1 - D^2)) per turn, less
+# the faithful step's gain of about pi*DTHETA per turn.  Start on the S.L.C.
+# (X = 24.6); DTHETA 0.02; triggering card OMINTR 1.25, OMETRI 30000,
+# ATRI = BTRI = 0.02.
+VC, FS2, FM2, EPS2, UM2, C2 = 22.0, 10.0, 6.0, 0.5, 20.0, 0.1
+
+
+def h2(u):
+    if u <= EPS2:
+        return FS2 * u / EPS2
+    if u <= UM2:
+        return FS2 - (FS2 - FM2) * (u - EPS2) / (UM2 - EPS2)
+    return FM2 + C2 * (u - UM2)
+
+
+v2 = sorted({*np.round(np.arange(100.0, -60.01, -4.0), 2), *np.round(np.linspace(VC + EPS2, VC - EPS2, 11), 2),
+             VC + UM2, VC - UM2}, reverse=True)
+x2 = [float(np.sign(VC - vi)) * h2(abs(VC - vi)) - h2(VC) for vi in v2]
+n2 = len(v2)
+xs2, ys2 = x2 + [0.0] * (200 - n2), list(v2) + [0.0] * (200 - n2)
+lines = ["1", f"{n2:5d}{-0.02:10.2f}{40.0:10.2f}{24.6:10.2f}{0.0:10.2f}{0.02:10.2f}{0:7d}"]
+for arr in (xs2, ys2):
+    for c in range(40):
+        lines.append("".join(f"{val:10.4f}" for val in arr[5 * c:5 * c + 5]))
+lines.append(f"{1.25:10.2f}{30000.0:10.2f}{0.02:10.2f}{0.02:10.2f}")
+open("mlien_a9_7_decay.dat", "w").write("\n".join(lines) + "\n")
+print(n2, "points (decay deck)")

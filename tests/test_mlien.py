@@ -152,3 +152,35 @@ def test_aktri_precedence_changes_the_phase_through_the_inexact_pi():
     drift_i = np.abs(np.angle(np.exp(1j * (intended - om))))
     assert np.all(drift_l > 5 * drift_i)
     assert drift_l[-1] > 0.1  # radians at T = 50: the precedence matters
+
+
+def test_a9_7_decay_deck_oscillation_dies_out_at_the_damping_of_the_stable_origin():
+    """cards/mlien_a9_7_decay.dat (App. 9, Fig. A9-7; ch. 2.4.1.2): the drive
+    rises past v_oc, the stable limit cycle vanishes and the oscillation dies
+    out about the stable origin.  Its log decrement per turn is the analytic
+    one of the rising part (slope C = 0.1 in the Lienard plane, D = C/2),
+    2 pi D / sqrt(1 - D^2), less the listing's tangent step's energy gain,
+    about pi*DTHETA per turn; with the deck's small triggering oscillation
+    the decay is the same within its scatter."""
+    import math
+
+    from scipy.signal import find_peaks
+
+    from lieng.mlien import Deck, run_deck
+
+    deck = Deck.from_lines((CARDS / "mlien_a9_7_decay.dat").read_text().splitlines())
+    assert deck.trigger == (1.25, 30000.0, 0.02, 0.02) and deck.omega < 0
+    d = 0.1 / 2
+    expect = 2 * math.pi * d / math.sqrt(1 - d * d) - math.pi * deck.dtheta
+    for trig, tol in (((0.0, 0.0, 0.0, 0.0), 0.02), (None, 0.1)):
+        if trig is not None:
+            deck.trigger = trig
+        res = run_deck(deck)
+        xs = np.convolve(res.x, np.ones(25) / 25, mode="same")
+        pk, _ = find_peaks(xs, distance=100)
+        pk = pk[(pk > 12) & (pk < xs.size - 12)]
+        late = pk[res.ymdl[pk] > 35.0]                 # the drive well past v_oc: no limit cycle left
+        assert late.size >= 4
+        dec = np.log(xs[late][:-1] / xs[late][1:])
+        assert np.mean(dec) == pytest.approx(expect, rel=tol)
+        assert xs[late][-1] < 0.4 * xs[pk[0]]           # it has died out to well under the stick-slip size
