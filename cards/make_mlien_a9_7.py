@@ -22,15 +22,22 @@ def g(s):
 v = sorted({*np.round(np.arange(60.0, -60.01, -2.0), 2), *np.round(np.linspace(10.5, 9.5, 11), 2), 30.0, -10.0},
            reverse=True)
 x = [g(10.0 - vi) - g(10.0) for vi in v]
-n = len(v)
-xs, ys = x + [0.0] * (200 - n), list(v) + [0.0] * (200 - n)
-lines = ["1", f"{n:5d}{0.01:10.2f}{12.0:10.2f}{-8.0:10.2f}{0.0:10.2f}{0.01:10.2f}{0:7d}"]
-for arr in (xs, ys):
-    for c in range(40):
-        lines.append("".join(f"{val:10.4f}" for val in arr[5 * c:5 * c + 5]))
-lines.append(f"{1.25:10.2f}{30000.0:10.2f}{0.02:10.2f}{0.2:10.2f}")
-open("mlien_a9_7.dat", "w").write("\n".join(lines) + "\n")
-print(n, "points")
+
+
+def write(name, x, v, omega, ampv0, xinp, dtheta, trig):
+    """Card 1 KEY; card 2 (I5,5F10.2,I7); 40 + 40 cards (5F10.4); the trigger card (4F10.2)."""
+    n = len(v)
+    xs, ys = list(x) + [0.0] * (200 - n), list(v) + [0.0] * (200 - n)
+    lines = ["1", f"{n:5d}{omega:10.2f}{ampv0:10.2f}{xinp:10.2f}{0.0:10.2f}{dtheta:10.2f}{0:7d}"]
+    for arr in (xs, ys):
+        for c in range(40):
+            lines.append("".join(f"{val:10.4f}" for val in arr[5 * c:5 * c + 5]))
+    lines.append("".join(f"{val:10.2f}" for val in trig))
+    open(name, "w").write("\n".join(lines) + "\n")
+    print(name, n, "points")
+
+
+write("mlien_a9_7.dat", x, v, 0.01, 12.0, -8.0, 0.01, (1.25, 30000.0, 0.02, 0.2))
 
 # --- mlien_a9_7_decay.dat: the dying-out oscillation.
 # Ch. 2.4.1.2: "In case of a stable origin a trajectory approaching it
@@ -59,12 +66,4 @@ def h2(u):
 v2 = sorted({*np.round(np.arange(100.0, -60.01, -4.0), 2), *np.round(np.linspace(VC + EPS2, VC - EPS2, 11), 2),
              VC + UM2, VC - UM2}, reverse=True)
 x2 = [float(np.sign(VC - vi)) * h2(abs(VC - vi)) - h2(VC) for vi in v2]
-n2 = len(v2)
-xs2, ys2 = x2 + [0.0] * (200 - n2), list(v2) + [0.0] * (200 - n2)
-lines = ["1", f"{n2:5d}{-0.02:10.2f}{40.0:10.2f}{24.6:10.2f}{0.0:10.2f}{0.02:10.2f}{0:7d}"]
-for arr in (xs2, ys2):
-    for c in range(40):
-        lines.append("".join(f"{val:10.4f}" for val in arr[5 * c:5 * c + 5]))
-lines.append(f"{1.25:10.2f}{30000.0:10.2f}{0.02:10.2f}{0.02:10.2f}")
-open("mlien_a9_7_decay.dat", "w").write("\n".join(lines) + "\n")
-print(n2, "points (decay deck)")
+write("mlien_a9_7_decay.dat", x2, v2, -0.02, 40.0, 24.6, 0.02, (1.25, 30000.0, 0.02, 0.02))
