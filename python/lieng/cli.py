@@ -385,19 +385,11 @@ def main(argv=None) -> int:
     try:
         if args.command == "run":
             return {"lieng1": _run_lieng1, "mlien": _run_mlien, "trc": _run_trc}[args.program](args)
-        if args.command == "cycles":
-            return _cycles(args)
-        if args.command == "sweep":
-            return _sweep(args)
-        if args.command == "diagnose":
-            return _diagnose(args)
-        if args.command == "synth":
-            return _synth(args)
-        if args.command == "figures":
-            return _figures(args)
-        if args.command == "twodof":
-            return _twodof(args)
-        parser.error(f"unknown command {args.command}")  # pragma: no cover
+        handlers = {"cycles": _cycles, "sweep": _sweep, "diagnose": _diagnose, "synth": _synth,
+                    "figures": _figures, "twodof": _twodof}
+        if args.command not in handlers:
+            parser.error(f"unknown command {args.command}")  # pragma: no cover
+        return handlers[args.command](args)
     except LiengInputError as exc:
         print(f"lieng: error: {exc}", file=sys.stderr)
         return 2

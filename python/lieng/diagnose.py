@@ -343,8 +343,8 @@ def _lowpass(y, dt, fcut):
 
 
 def _spectral_line(sig, dt, fmin, f0=None):
-    """The strongest line above fmin, with f0 not a harmonic of f0 (within
-    one frequency bin): (frequency, amplitude, phase) from a Hann-windowed
+    """The strongest line above fmin, and, with f0, not on a harmonic of f0
+    (within one frequency bin): (frequency, amplitude, phase) from a Hann-windowed
     FFT of ``sig``."""
     s = sig - np.mean(sig)
     n = s.size
@@ -373,10 +373,8 @@ def statistics(t, x, y, vd, fn, min_cycles: int = 3) -> tuple[dict, dict]:
     # or, without y, in x away from the stick-slip's harmonics
     f0 = 1.0 / float(np.mean(c.period))
     if y is not None:
-        xs = _smooth(x, dt, fn)
-        A = np.column_stack([np.ones_like(xs), xs, c.v])
-        r = y - A @ np.linalg.lstsq(A, y, rcond=None)[0]
-        f_tr, a_tr, _ = _spectral_line(r, dt, 2.0 * fn)
+        A, coef = _y_on_motion(t, x, y, fn, c)
+        f_tr, a_tr, _ = _spectral_line(y - A @ coef, dt, 2.0 * fn)
     else:
         f_tr, a_tr, _ = _spectral_line(x, dt, 2.0 * fn, f0)
     st["triggering"] = a_tr / amp
@@ -570,13 +568,18 @@ class _Judge:
         return feature_error(self.meas[:2], sim[:2], self.amp, self.period, self.effect), xs
 
 
+def _y_on_motion(t, x, y, fn, c: Cycles):
+    """The regression of y on the smoothed motion, y ~ c0 + c1 x + c2 x':
+    the design matrix and the coefficients."""
+    A = np.column_stack([np.ones_like(x), _smooth(x, float(t[1] - t[0]), fn), c.v])
+    return A, np.linalg.lstsq(A, y, rcond=None)[0]
+
+
 def _y_locked(t, x, y, fn, c: Cycles):
     """Coefficients of the part of y locked to the motion: y ~ c0 + c1 x + c2 x'
     (a constant when the motion explains less than a third of y's variance:
     a channel of noise and lines must not be modelled as following x)."""
-    dt = float(t[1] - t[0])
-    A = np.column_stack([np.ones_like(x), _smooth(x, dt, fn), c.v])
-    coef = np.linalg.lstsq(A, y, rcond=None)[0]
+    A, coef = _y_on_motion(t, x, y, fn, c)
     r2 = 1.0 - float(np.var(y - A @ coef)) / max(float(np.var(y)), 1e-300)
     if r2 < 1.0 / 3.0:
         return (float(np.mean(y)), 0.0, 0.0)
@@ -607,11 +610,10 @@ class Diagnosis:
                 "features": self.features, "reason": self.reason, "warnings": self.warnings}
 
 
-def _candidates(effect, base: Params, st, aux, t, x, y, vd, fn, ylow, tr):
-    """Extended models for ``effect``, fitted on the training samples ``tr``:
-    the estimate the evidence gives and a few variants of it (the training
-    error picks one)."""
-    ctr = cycles(t[tr], x[tr], fn, vd[tr], min_cycles=1)
+def _candidates(effect, base: Params, st, aux, t, x, y, vd, fn, ylow, tr, ctr: Cycles):
+    """Extended models for ``effect``, fitted on the training samples ``tr``
+    (whose cycles are ``ctr``): the estimate the evidence gives and a few
+    variants of it (the training error picks one)."""
     target = float(np.mean(ctr.trough))
     amp = aux["amp"]
     out = []
@@ -777,7 +779,7 @@ def diagnose(rec: Record, fn: float, fnv: float | None = None, keep=None) -> Dia
     train = _Judge(t, x, y, vd, fn, ylow, tr, effect)
     ext = base
     if effect != "none":
-        cands = _candidates(effect, base, st, aux, t, x, y, vd, fn, ylow, tr)
+        cands = _candidates(effect, base, st, aux, t, x, y, vd, fn, ylow, tr, ctr)
         errs = [train.error(p)[0] for p in cands]
         if errs and np.isfinite(min(errs)):
             ext = cands[int(np.argmin(errs))]

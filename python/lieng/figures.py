@@ -81,14 +81,13 @@ def _phase(ax, res, title, every=5):
 def _lieng1(cards: Path, name: str, ntraj=9, npts=3000):
     from .lieng1 import run_deck
 
-    deck = read_deck(cards / name, program="lieng1")
-    return deck, run_deck(deck, ntraj=ntraj, npts=npts)
+    return run_deck(read_deck(cards / name, program="lieng1"), ntraj=ntraj, npts=npts)
 
 
 def _plot_phase_figs(cards, decks, path, caption, ntraj):
     fig, axes = _fig(len(decks))
     for ax, name in zip(axes, decks):
-        deck, res = _lieng1(cards, name, ntraj=ntraj)
+        res = _lieng1(cards, name, ntraj=ntraj)
         _phase(ax, res, Path(name).name)
     return _save(fig, path, caption)
 
@@ -121,7 +120,7 @@ def _sweep_fig(cards, name, path, caption, kind):
 
 
 def _a9(cards, name, path, caption):
-    deck, res = _lieng1(cards, name, ntraj=1, npts=3000)
+    res = _lieng1(cards, name, ntraj=1, npts=3000)
     fig, axes = _fig(2)
     _phase(axes[0], res, Path(name).name, every=2)
     axes[1].plot(res.t[0], res.x[0], lw=0.8)

@@ -192,10 +192,10 @@ def onedof(params: RigParams | None = None, load_correction: bool = False, **kw)
     p = params or RigParams()
     rho = p.r2 / p.r1
     # one DoF in x2 = rho x1: the 2-DoF matrices referred to the pins (q = (1/rho, 1) . x2)
-    M2, C2, K2, _ = matrices(p)
+    M2, C2, K2, kn2 = matrices(p)
     q = np.array([1.0 / rho, 1.0])
     m_eq, c_eq, k_eq = float(q @ M2 @ q), float(q @ C2 @ q), float(q @ K2 @ q)
-    kn = p.k3 * math.sin(p.alpha) * math.cos(p.alpha) if load_correction else 0.0
+    kn = kn2 if load_correction else 0.0
     # a 2x2 system with a negligible second mass carried rigidly: solve as diagonal with a dummy DoF
     M = np.array([[1.0, 0.0], [0.0, m_eq]])
     K = np.array([[1.0, 0.0], [0.0, k_eq]])
