@@ -1,16 +1,20 @@
 !> The generalised 1-DoF stick-slip slider of `lieng diagnose`: the thesis's
-!> model (a dynamometer of natural frequency wn on a belt, one friction
-!> characteristic, constant load and drive) with the extensions the
-!> diagnosis can switch on: a load factor L(t) + kx (x - xref) (load
-!> variation through an exogenous record or through the rig's coupling of
-!> the normal force to the displacement, triggering),
-!> a drive velocity vd(t) (drive modulation), a static limit growing with the
-!> stick time (ageing) and two kinetic branches (twin mechanism).
+!> model (a dynamometer of natural frequency wn on a belt, one single-valued
+!> friction characteristic of general shape, constant load and drive, a small
+!> relative velocity in stick, ch. 2.3.1.1) with the extensions the diagnosis
+!> can switch on: a load factor L(t) + kx (x - xref) (load variation through
+!> an exogenous record or through the rig's coupling of the normal force to
+!> the displacement, triggering), a drive velocity vd(t) (drive modulation),
+!> a static limit growing with the stick time (ageing), two kinetic branches
+!> (twin mechanism) and creep growing towards the static limit.
 !>
 !>   slip:  x'' = wn**2 (L(t) F - x) - 2 zeta wn x',
-!>          F = sign(s) (fk + ds exp(-|s|/vs)) + b delta/2,  s = vd - x'
-!>          (b = -1 while the relative speed grows, +1 after it has peaked)
-!>   stick: x' = vd(t), until |x| > L(t) fs (1 + a ln(1 + ts/tau))
+!>          F = sign(s) phi(|s|) + b delta/2,  s = vd - x'
+!>          phi tabulated at (sg, fg), linear between the points, constant
+!>          beyond the ends (b = -1 while the relative speed grows, +1 after
+!>          it has peaked)
+!>   stick: x' = vd(t) (1 - c0 - c1 r**4), r = x / limit (creep),
+!>          until |x| > L(t) fs (1 + a ln(1 + ts/tau))
 !>   slip -> stick when s <= 0 and |x| <= L(t) fs.
 !>
 !> Semi-implicit (symplectic) Euler sub-steps; vd and L are linear between
@@ -23,8 +27,29 @@ module slider
 
 contains
 
-   subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, fk, ds, vs, delta, age_a, age_tau, kx, xref, &
-                         x0, x, v, state, status)
+   !> phi(s) for s >= 0: linear interpolation in the table, constant beyond it.
+   pure function phi(s, ns, sg, fg) result(f)
+      real(wp), intent(in) :: s          !< sliding velocity (mm/s), >= 0
+      integer, intent(in) :: ns          !< number of table points (>= 1)
+      real(wp), intent(in) :: sg(ns)     !< sliding velocities, increasing (mm/s)
+      real(wp), intent(in) :: fg(ns)     !< friction over stiffness there (mm)
+      real(wp) :: f
+      integer :: j
+      if (s <= sg(1)) then
+         f = fg(1)
+         return
+      end if
+      do j = 2, ns
+         if (s <= sg(j)) then
+            f = fg(j - 1) + (fg(j) - fg(j - 1)) * (s - sg(j - 1)) / (sg(j) - sg(j - 1))
+            return
+         end if
+      end do
+      f = fg(ns)
+   end function phi
+
+   subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, age_a, age_tau, kx, xref, &
+                         creep0, creep1, x0, x, v, state, status)
       integer, intent(in) :: n                !< number of output samples (>= 2)
       real(wp), intent(in) :: dt              !< output sample interval (s), > 0
       integer, intent(in) :: nsub             !< sub-steps per sample (>= 1)
@@ -33,27 +58,28 @@ contains
       real(wp), intent(in) :: wn              !< natural frequency (rad/s), > 0
       real(wp), intent(in) :: zeta            !< damping ratio
       real(wp), intent(in) :: fs              !< static limit (mm)
-      real(wp), intent(in) :: fk              !< kinetic level (mm)
-      real(wp), intent(in) :: ds              !< Stribeck excess (mm)
-      real(wp), intent(in) :: vs              !< Stribeck velocity (mm/s), > 0
+      integer, intent(in) :: ns               !< points of the characteristic table (>= 1)
+      real(wp), intent(in) :: sg(ns)          !< sliding velocities of the table, increasing (mm/s)
+      real(wp), intent(in) :: fg(ns)          !< the characteristic there: friction over stiffness (mm)
       real(wp), intent(in) :: delta           !< decelerating minus accelerating branch (mm)
       real(wp), intent(in) :: age_a           !< ageing: relative growth per e-fold of stick time
       real(wp), intent(in) :: age_tau         !< ageing time scale (s), > 0
       real(wp), intent(in) :: kx              !< load factor per mm of displacement (coupling)
       real(wp), intent(in) :: xref            !< displacement at which the coupling adds nothing (mm)
+      real(wp), intent(in) :: creep0          !< relative velocity in stick as a fraction of the drive
+      real(wp), intent(in) :: creep1          !< creep growing as (x / limit)**4 towards the static limit
       real(wp), intent(in) :: x0              !< initial displacement (mm), starts stuck
       real(wp), intent(out) :: x(n)           !< displacement (mm)
       real(wp), intent(out) :: v(n)           !< velocity (mm/s)
       integer, intent(out) :: state(n)        !< 1 stick, 0 slip
       integer, intent(out) :: status          !< 0 ok, 1 bad arguments, 2 non-finite state
-      real(wp) :: h, xs, vs_, t_st, s, sprev, f, lfac, vdr, lim, a, w
+      real(wp) :: h, xs, vs_, t_st, s, sprev, f, lfac, vdr, lim, a, w, r, b
       integer :: i, k
       logical :: stick
-      real(wp) :: b
 
       status = 0
       x = 0.0_wp; v = 0.0_wp; state = 0
-      if (n < 2 .or. nsub < 1 .or. .not. (dt > 0.0_wp) .or. .not. (wn > 0.0_wp) .or. .not. (vs > 0.0_wp) &
+      if (n < 2 .or. nsub < 1 .or. ns < 1 .or. .not. (dt > 0.0_wp) .or. .not. (wn > 0.0_wp) &
           .or. .not. (age_tau > 0.0_wp)) then
          status = 1
          return
@@ -73,11 +99,16 @@ contains
             lfac = (1.0_wp - w) * load(i) + w * load(i + 1)
             if (kx /= 0.0_wp) lfac = max(lfac + kx * (xs - xref), 0.05_wp)
             if (stick) then
-               vs_ = vdr
-               xs = xs + h * vdr
                t_st = t_st + h
                lim = lfac * fs
                if (age_a /= 0.0_wp) lim = lim * (1.0_wp + age_a * log(1.0_wp + t_st / age_tau))
+               vs_ = vdr
+               if (creep0 /= 0.0_wp .or. creep1 /= 0.0_wp) then
+                  r = 0.0_wp
+                  if (lim > 0.0_wp) r = min(max(xs / lim, 0.0_wp), 1.0_wp)
+                  vs_ = vdr * (1.0_wp - creep0 - creep1 * r**4)
+               end if
+               xs = xs + h * vs_
                if (abs(xs) > lim) then
                   stick = .false.
                   b = -1.0_wp
@@ -86,9 +117,9 @@ contains
             else
                s = vdr - vs_
                if (s > 0.0_wp) then
-                  f = fk + ds * exp(-s / vs) + 0.5_wp * b * delta
+                  f = phi(s, ns, sg, fg) + 0.5_wp * b * delta
                else if (s < 0.0_wp) then
-                  f = -(fk + ds * exp(s / vs))
+                  f = -phi(-s, ns, sg, fg)
                else
                   f = 0.0_wp
                end if

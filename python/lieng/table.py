@@ -1,14 +1,15 @@
-"""Reading numeric CSV tables (the modern inputs of TRC and diagnose).
+"""Reading numeric tables (the modern inputs of TRC and diagnose).
 
 One place for the header check and the cell-by-cell parse, so that every
 bad value is reported the same way: one line naming the file, the line and
-the column.
+the column.  Comma, TAB and whitespace separated tables are read alike; a
+header cell may carry its unit in brackets (``Time [s]``, ``F (mN)``).
 """
 
 from __future__ import annotations
 
-import csv
 import math
+import re
 from pathlib import Path
 from typing import Sequence
 
@@ -16,16 +17,119 @@ import numpy as np
 
 from .errors import LiengInputError
 
-__all__ = ["read_columns"]
+__all__ = ["read_columns", "read_table", "Table"]
+
+#: the longest line read (characters): a longer one is not a table row
+MAX_LINE = 100_000
 
 
-def read_columns(path, required: Sequence[str], optional: Sequence[str], expect: str) -> dict:
-    """Read the named columns of a CSV with a header row.
+class Table:
+    """A numeric table: header names (as written), their units (``""`` when
+    none is written) and one float column per name."""
+
+    def __init__(self, path, names, units, columns, lines):
+        self.path = str(path)
+        self.names = names
+        self.units = units
+        self.columns = columns
+        #: the file line of each row (1-based), for messages
+        self.lines = lines
+
+    def __len__(self):
+        return len(self.lines)
+
+
+_UNIT = re.compile(r"^\s*(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$")
+
+
+def _split_header(line: str):
+    if "," in line:
+        return ",", [c.strip() for c in line.split(",")]
+    if "\t" in line:
+        return "\t", [c.strip() for c in line.split("\t")]
+    if ";" in line:
+        return ";", [c.strip() for c in line.split(";")]
+    return None, line.split()
+
+
+def read_table(path, expect: str) -> Table:
+    """Read a delimited numeric table with a header row.
 
     Parameters
     ----------
     path : str or path-like
-        The CSV file.
+        The file: comma, semicolon, TAB or whitespace separated (the header
+        row decides); blank lines are skipped.
+    expect : str
+        What the header should look like, for the messages.
+
+    Returns
+    -------
+    Table
+
+    Raises
+    ------
+    LiengInputError
+        An unreadable file, a row with too few cells, a non-numeric or
+        non-finite cell (naming its line and column).
+    """
+    p = Path(path)
+    try:
+        if p.exists() and not p.is_file():
+            raise LiengInputError(f"{path}: not a regular file")
+        with open(p, newline="", encoding="utf-8") as fh:
+            text = fh.read()
+    except FileNotFoundError:
+        raise LiengInputError(f"{path}: no such file") from None
+    except (IsADirectoryError, UnicodeDecodeError):
+        raise LiengInputError(f"{path}: not a text table") from None
+    except OSError as e:
+        raise LiengInputError(f"{path}: cannot be read ({e.strerror or e})") from None
+    rows = text.splitlines()
+    k0 = next((k for k, r in enumerate(rows) if r.strip()), None)
+    if k0 is None:
+        raise LiengInputError(f"{path}: empty file: expected a header {expect}")
+    sep, head = _split_header(rows[k0])
+    names, units = [], []
+    for h in head:
+        m = _UNIT.match(h)
+        names.append(m.group(1) if m else h)
+        units.append(m.group(2) if m else "")
+    ncol = len(names)
+    data, lines = [], []
+    for r in range(k0 + 1, len(rows)):
+        row = rows[r]
+        if not row.strip():
+            continue
+        if len(row) > MAX_LINE:
+            raise LiengInputError(f"{path}: line {r + 1}: longer than {MAX_LINE} characters: not a table row")
+        cells = row.split(sep) if sep else row.split()
+        if len(cells) < ncol:
+            raise LiengInputError(f"{path}: line {r + 1}: {len(cells)} cells where the header has {ncol}")
+        vals = []
+        for c in range(ncol):
+            cell = cells[c].strip()
+            try:
+                val = float(cell)
+            except ValueError:
+                raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell[:40]!r} is not a "
+                                      f"number") from None
+            if not math.isfinite(val):
+                raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is not a finite number")
+            vals.append(val)
+        data.append(vals)
+        lines.append(r + 1)
+    arr = np.asarray(data, float).reshape(len(data), ncol)
+    return Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
+
+
+def read_columns(path, required: Sequence[str], optional: Sequence[str], expect: str) -> dict:
+    """Read the named columns of a table with a header row (see :func:`read_table`).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
     required, optional : sequence of str
         Column names that must be, and that may be, in the header.
     expect : str
@@ -35,41 +139,10 @@ def read_columns(path, required: Sequence[str], optional: Sequence[str], expect:
     Returns
     -------
     dict
-        name -> float ndarray for every column present; blank lines are
-        skipped.
-
-    Raises
-    ------
-    LiengInputError
-        A missing file or column, a non-numeric or non-finite cell (naming
-        its line and column).
+        name -> float ndarray for every column present.
     """
-    p = Path(path)
-    try:
-        with open(p, newline="", encoding="utf-8") as fh:
-            rows = list(csv.reader(fh))
-    except FileNotFoundError:
-        raise LiengInputError(f"{path}: no such file") from None
-    except (IsADirectoryError, UnicodeDecodeError):
-        raise LiengInputError(f"{path}: not a CSV text file") from None
-    if not rows:
-        raise LiengInputError(f"{path}: empty file: expected a header {expect}")
-    head = [h.strip() for h in rows[0]]
+    tab = read_table(path, expect)
     for need in required:
-        if need not in head:
+        if need not in tab.names:
             raise LiengInputError(f"{path}: no column {need!r} in the header (expected {expect})")
-    cols = {n: head.index(n) for n in (*required, *optional) if n in head}
-    data = {n: [] for n in cols}
-    for r, row in enumerate(rows[1:], start=2):
-        if not row or all(not c.strip() for c in row):
-            continue
-        for n, c in cols.items():
-            cell = row[c].strip() if c < len(row) else ""
-            try:
-                val = float(cell)
-            except ValueError:
-                raise LiengInputError(f"{path}: line {r}, column {n}: {cell!r} is not a number") from None
-            if not math.isfinite(val):
-                raise LiengInputError(f"{path}: line {r}, column {n}: {cell} is not a finite number")
-            data[n].append(val)
-    return {n: np.asarray(v, float) for n, v in data.items()}
+    return {n: tab.columns[n] for n in (*required, *optional) if n in tab.names}

@@ -1,0 +1,1 @@
+"""``lieng diagnose`` (package; see the stage modules)."""

@@ -1,0 +1,274 @@
+"""Stage 3 of ``lieng diagnose``: the thesis's model as the baseline, and the
+simulator its extensions share.
+
+The baseline is the 1-DoF model of ch. 2.3: a dynamometer of natural
+frequency fn, a **single-valued characteristic of general shape** phi(s) of
+the sliding velocity s = v0 - x', a static limit FS, the small relative
+velocity in stick of ch. 2.3.1.1 (the stick velocity a fraction 1 - c0 of
+the drive), constant load and drive, started from the record's own state at
+the start of every stroke.  It is identified from the record:
+
+* phi by the **reverse construction pooled over slips**: during slip the
+  friction is F = x + x''/wn**2 (the centre of curvature of the trajectory
+  in the Lienard plane, TRC's XX); F is binned by s (quantile bins) and the
+  median of each bin is a point of the table (damping cannot be told from
+  the slope of phi and is part of it);
+* FS, the median peak; c0 from the slope of x in the sticks;
+* then the level of phi is moved until the simulated mean trough matches the
+  record's (the smoothing of x'' biases the level, not the shape).
+
+The simulator (:func:`simulate`) runs the compiled slider core
+(``fortran/slider.f90``) stroke by stroke with the extensions' parameters
+(:class:`Params`), each zero in the baseline.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+
+
+from .. import _core
+from ..errors import LiengInputError
+from .segment import Cycles, Prepared
+
+__all__ = ["Params", "simulate", "fit_baseline", "slip_friction"]
+
+#: quantile bins of the sliding velocity for the characteristic's table
+NBINS = 10
+
+
+@dataclass
+class Params:
+    """The slider's parameters (mm, s) and the model of the normal channel.
+
+    The baseline sets ``fs``, ``sg``/``fg`` (the characteristic), ``creep0``
+    and the locked model of y (``y_c``); every extension term is zero in it.
+    """
+
+    fs: float
+    sg: np.ndarray
+    fg: np.ndarray
+    zeta: float = 0.0
+    creep0: float = 0.0
+    creep1: float = 0.0            # creep growing towards the static limit
+    delta: float = 0.0             # twin: decelerating minus accelerating branch (mm)
+    age_a: float = 0.0             # ageing: FS (1 + a ln(1 + ts/tau))
+    age_tau: float = 0.01
+    load_k: float = 0.0            # exogenous: load = 1 + load_k * (ylow - mean), ylow measured
+    load_kx: float = 0.0           # coupled: load += load_kx * (x - load_xref)
+    load_xref: float = 0.0
+    trig_eps: float = 0.0          # load *= 1 + eps sin(2 pi f t + ph)
+    trig_f: float = 0.0
+    trig_ph: float = 0.0
+    drv_a: float = 0.0             # vd *= 1 + a sin(2 pi f t + ph)
+    drv_f: float = 0.0
+    drv_ph: float = 0.0
+    drift: float = 0.0             # friction level drift per second (mm/s), about the record's middle
+    drift_t0: float = 0.0
+    y_c: tuple = (0.0, 0.0, 0.0)   # y = c0 + c1 x + c2 x' (the part of y locked to the motion)
+
+    def copy(self, **kw) -> "Params":
+        q = Params(**{f.name: getattr(self, f.name) for f in fields(self)})
+        for k, v in kw.items():
+            setattr(q, k, v)
+        return q
+
+    def to_json(self) -> dict:
+        d = {}
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name in ("sg", "fg"):
+                d[f.name] = [float(a) for a in v]
+            elif f.name == "y_c":
+                d.update(y_c0=float(v[0]), y_cx=float(v[1]), y_cv=float(v[2]))
+            else:
+                d[f.name] = float(v)
+        return d
+
+
+def _sin(t, f, ph):
+    return np.sin(2 * math.pi * f * t + ph)
+
+
+def simulate(pr: Prepared, p: Params, fn: float, ylow=None, x0=None):
+    """Simulate the slider on the prepared record's grid, stroke by stroke.
+
+    Parameters
+    ----------
+    pr : Prepared
+        The record (its time grid, drive and strokes).
+    p : Params
+        The model.
+    fn : float
+        Natural frequency (Hz).
+    ylow : ndarray, optional
+        The low-passed normal channel (for the exogenous load term).
+    x0 : ndarray, optional
+        The displacement to start each stroke from (default: the record's).
+
+    Returns
+    -------
+    x, v, state : ndarray
+        Displacement (mm), velocity (mm/s), 1 in stick / 0 in slip.
+    """
+    dt = pr.dt
+    wn = 2 * math.pi * fn
+    nsub = max(4, int(math.ceil(dt * wn / 0.05)))
+    xs, vs, ss = [], [], []
+    sg = np.ascontiguousarray(p.sg, float)
+    fg = np.ascontiguousarray(p.fg, float)
+    for k, sl in enumerate(pr.stroke_slices()):
+        t = pr.t[sl]
+        vdd = pr.vd[sl].astype(float).copy()
+        if p.drv_a:
+            vdd = vdd * (1.0 + p.drv_a * _sin(t, p.drv_f, p.drv_ph))
+        load = np.ones_like(t)
+        if p.load_k and ylow is not None:
+            load = load + p.load_k * (ylow[sl] - np.mean(ylow))
+        if p.trig_eps:
+            load = load * (1.0 + p.trig_eps * _sin(t, p.trig_f, p.trig_ph))
+        if p.drift:
+            load = load * (1.0 + p.drift * (t - p.drift_t0))
+        load = np.maximum(load, 0.05)
+        start = float(pr.x[sl][0] if x0 is None else x0[k])
+        x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta,
+                                                p.age_a, p.age_tau, p.load_kx, p.load_xref, p.creep0, p.creep1,
+                                                start)
+        if status != 0:
+            raise LiengInputError(f"the slider simulation failed (status {status}): check --fn and the record's units")
+        xs.append(x)
+        vs.append(v)
+        ss.append(state)
+    return np.concatenate(xs), np.concatenate(vs), np.concatenate(ss)
+
+
+def slip_samples(c: Cycles, n: int):
+    """The inner samples of every slip (peak to trough, less an eighth at
+    each end), with the branch: -0.5 before the sliding speed peaks, +0.5
+    after; and the slip number of each sample."""
+    idx, br, sid = [], [], []
+    for j, (pk, tr) in enumerate(zip(c.peak_i, c.trough_i)):
+        m = tr - pk
+        if m < 4:
+            continue
+        cut = max(1, m // 8) if m >= 8 else 0
+        seg = np.arange(pk + cut, tr + 1 - cut)
+        seg = seg[seg < n]
+        if seg.size < 3:
+            continue
+        kmin = int(np.argmin(c.v[seg]))
+        idx.append(seg)
+        br.append(np.where(np.arange(seg.size) <= kmin, -0.5, 0.5))
+        sid.append(np.full(seg.size, j))
+    if not idx:
+        return np.array([], int), np.array([]), np.array([], int)
+    return np.concatenate(idx), np.concatenate(br), np.concatenate(sid)
+
+
+def slip_friction(pr: Prepared, c: Cycles, fn: float, x=None):
+    """The reverse construction in the slips: (indices, sliding velocity s,
+    friction F = x + x''/wn**2, branch, slip number)."""
+    x = pr.x if x is None else x
+    idx, br, sid = slip_samples(c, x.size)
+    wn = 2 * math.pi * fn
+    F = x[idx] + c.a[idx] / wn ** 2
+    s = pr.vd[idx] - c.v[idx]
+    return idx, s, F, br, sid
+
+
+def characteristic(s, F, nbins: int = NBINS):
+    """A single-valued table phi(s) from pooled (s, F): medians in quantile
+    bins of s (s > 0), increasing in s."""
+    ok = s > 0
+    s, F = s[ok], F[ok]
+    if s.size < 2 * nbins:
+        nbins = max(2, s.size // 4)
+    if s.size < 4:
+        return np.array([0.0]), np.array([float(np.median(F)) if F.size else 0.0])
+    q = np.quantile(s, np.linspace(0, 1, nbins + 1))
+    sg, fg = [], []
+    for a, b in zip(q[:-1], q[1:]):
+        m = (s >= a) & (s <= b)
+        if np.count_nonzero(m) >= 2:
+            sg.append(float(np.median(s[m])))
+            fg.append(float(np.median(F[m])))
+    sg, fg = np.asarray(sg), np.asarray(fg)
+    keep = np.r_[True, np.diff(sg) > 1e-12 * max(1.0, float(np.max(np.abs(sg))))]
+    return sg[keep], fg[keep]
+
+
+def stick_creep(pr: Prepared, c: Cycles) -> float:
+    """The relative velocity in stick as a fraction of the drive (c0): one
+    minus the median over sticks of the slope of x in the stick's middle
+    half over the drive there; 0 when it does not differ from 0 by more
+    than its scatter."""
+    r = []
+    for k in np.flatnonzero(c.next_ok):
+        lo, hi = c.trough_i[k], c.peak_i[k + 1]
+        m = hi - lo
+        seg = np.arange(lo + m // 4, hi - m // 4)
+        if seg.size < 5:
+            continue
+        vd = float(np.mean(pr.vd[seg]))
+        if vd <= 0:
+            continue
+        r.append(np.polyfit(pr.t[seg], pr.x[seg], 1)[0] / vd)
+    if len(r) < 3:
+        return 0.0
+    r = np.asarray(r)
+    c0 = 1.0 - float(np.median(r))
+    se = 1.2533 * float(np.std(r)) / math.sqrt(r.size)
+    return float(np.clip(c0, 0.0, 0.5)) if abs(c0) > 3 * se else 0.0
+
+
+def trough_mean(pr, c_fn, x):
+    """Mean trough of a simulated trace (cycles found the record's way)."""
+    from .segment import find_cycles
+
+    cc = find_cycles(pr_like(pr, x), c_fn)
+    if cc.n == 0:
+        return None
+    return float(np.mean(x[cc.trough_i]))
+
+
+def pr_like(pr: Prepared, x, y=None) -> Prepared:
+    """The prepared record with another displacement (and normal channel)."""
+    return Prepared(t=pr.t, x=x, vd=pr.vd, y=pr.y if y is None else y, strokes=pr.strokes, dt=pr.dt,
+                    flipped=pr.flipped, notes=[])
+
+
+def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6) -> Params:
+    """The baseline (module docstring), identified on ``pr`` with its cycles ``c``."""
+    idx, s, F, br, sid = slip_friction(pr, c, fn)
+    sg, fg = characteristic(s, F)
+    fs = float(np.median(pr.x[c.peak_i]))
+    p = Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=stick_creep(pr, c))
+    target = float(np.mean(pr.x[c.trough_i]))
+    # move the level of phi until the simulated mean trough matches
+    lo_off, hi_off = None, None
+    off = 0.0
+    d0 = float(np.ptp(pr.x[c.peak_i]) + np.median(c.drops(pr.x)))
+    step = 0.1 * max(d0, 1e-9)
+    for _ in range(iters):
+        q = p.copy(fg=np.minimum(fg + off, fs))
+        xs, _, _ = simulate(pr, q, fn)
+        tr = trough_mean(pr, fn, xs)
+        if tr is None:                 # no slip: the kinetic level is too high
+            hi_off = off
+        elif tr > target:
+            hi_off = off
+        else:
+            lo_off = off
+        if lo_off is not None and hi_off is not None:
+            off = 0.5 * (lo_off + hi_off)
+        elif lo_off is None:
+            off -= step
+            step *= 2
+        else:
+            off += step
+            step *= 2
+    p.fg = np.minimum(fg + off, fs)
+    return p

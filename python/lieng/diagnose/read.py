@@ -1,0 +1,381 @@
+"""Stage 1 of ``lieng diagnose``: a measured record as labs record it, read
+and conditioned.
+
+Two kinds of record are read (comma, semicolon, TAB or whitespace separated,
+units in the header in brackets or the defaults below):
+
+* **displacement records** ``t,x[,y][,v0]``: time (s), the dynamometer's
+  spring extension x (mm: friction force over the tangential stiffness), an
+  optional normal channel y (mm, any affine reading of the normal load) and
+  the drive velocity v0 (mm/s);
+* **force records** ``t,F[,N][,position|v0]`` with ``stiffness`` (N/m): the
+  friction force read through the spring (N, mN, uN or kN), the normal force,
+  the drive (stage) position (mm, um, m) or velocity; x = F / stiffness.
+
+Without a drive column the constant ``v0`` is used; a drive may be signed
+and may reverse (reciprocating rigs: see :mod:`.segment`).  Uneven sampling
+and gaps are resampled onto the median interval, isolated spikes replaced by
+their neighbours' mean, and a mains-hum line (50 or 60 Hz and harmonics)
+that stands far above the spectrum around it removed; each is said in
+``Record.notes``.  A thesis-style TRC readings deck is accepted as well.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import LiengInputError
+from ..table import read_table
+
+__all__ = ["Record", "read_record", "record_from_trc_deck", "record_from_arrays", "MAX_SAMPLES"]
+
+#: the longest record read (samples), about 2 GB of working memory at most
+MAX_SAMPLES = 5_000_000
+MIN_SAMPLES = 50
+
+_NAMES = {
+    "t": ("t", "time"),
+    "x": ("x", "disp", "displacement", "extension", "spring"),
+    "y": ("y", "xn", "normal_disp", "normal_displacement"),
+    "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity"),
+    "F": ("f", "friction", "force", "friction_force", "ft", "tangential"),
+    "N": ("n", "normal", "load", "normal_force", "fnormal"),
+    "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive"),
+}
+_LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6}
+_VELOCITY = {"": 1.0, "mm/s": 1.0, "um/s": 1e-3, "µm/s": 1e-3, "m/s": 1e3, "cm/s": 10.0, "mm/min": 1 / 60}
+_TIME = {"": 1.0, "s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0}
+_FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "kn": 1e3}
+
+
+@dataclass
+class Record:
+    """A record ready for the diagnosis, on an even time grid.
+
+    Attributes
+    ----------
+    t : ndarray
+        Time (s), evenly spaced.
+    x : ndarray
+        Spring extension (mm): the friction force over the tangential
+        stiffness, signed as the force.
+    vd : ndarray
+        Drive velocity (mm/s), signed.
+    y : ndarray or None
+        The normal channel (a normal force, or an affine reading of it).
+    y_is_force : bool
+        y is the normal force itself (its relative change is the load's).
+    drive_recorded : bool
+        The drive came from a column (not a nominal ``--v0``).
+    notes : list of str
+        What was done to the data (resampling, spikes, hum).
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    vd: np.ndarray
+    y: np.ndarray | None = None
+    y_is_force: bool = False
+    drive_recorded: bool = False
+    source: str = "record"
+    notes: list = field(default_factory=list)
+    fn_hint: float | None = None
+
+    @property
+    def dt(self) -> float:
+        return float(self.t[1] - self.t[0])
+
+
+def _fail(msg):
+    raise LiengInputError(msg)
+
+
+def _role(name: str):
+    key = name.strip().lower().replace(" ", "_").replace("-", "_")
+    for role, alts in _NAMES.items():
+        if key in alts:
+            return role
+    return None
+
+
+def _scale(path, name, unit, table, what):
+    u = unit.strip().lower().replace(" ", "")
+    if u not in table:
+        _fail(f"{path}: column {name}: unit {unit!r} not understood for a {what} (use {', '.join(k for k in table if k)})")
+    return table[u]
+
+
+def _smooth_derivative(y, dt, win):
+    from scipy.signal import savgol_filter
+
+    win = max(5, int(win) | 1)
+    if win >= y.size:
+        win = (y.size - 1) | 1
+        if win < 5:
+            return np.gradient(y, dt)
+    return savgol_filter(y, win, 2, deriv=1, delta=dt)
+
+
+def read_record(path, v0: float | None = None, stiffness: float | None = None) -> Record:
+    """Read a displacement or force record (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The table.
+    v0 : float, optional
+        The drive velocity (mm/s) when the record has no drive column; may be
+        negative (a drive in the negative direction).
+    stiffness : float, optional
+        Tangential stiffness (N/m): needed for a force record.
+
+    Returns
+    -------
+    Record
+
+    Raises
+    ------
+    LiengInputError
+        Naming the line and column, or the option, of bad input.
+    """
+    tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness")
+    cols, units = {}, {}
+    for name, unit in zip(tab.names, tab.units):
+        role = _role(name)
+        if role and role not in cols:
+            cols[role], units[role] = (name, tab.columns[name]), unit
+    if "t" not in cols:
+        _fail(f"{path}: no time column (t or time) in the header")
+    if "x" not in cols and "F" not in cols:
+        _fail(f"{path}: no displacement (x) or friction force (F) column in the header")
+    n = len(tab)
+    if n < MIN_SAMPLES:
+        _fail(f"{path}: {n} samples: too short for stick-slip analysis (at least {MIN_SAMPLES})")
+    if n > MAX_SAMPLES:
+        _fail(f"{path}: {n} samples: more than the {MAX_SAMPLES} this command reads; cut the record")
+    t = cols["t"][1] * _scale(path, cols["t"][0], units["t"], _TIME, "time")
+    d = np.diff(t)
+    bad = np.flatnonzero(d <= 0)
+    if bad.size:
+        what = "repeats" if d[bad[0]] == 0 else "goes back"
+        _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
+              f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
+    notes = []
+    if "x" in cols:
+        x = cols["x"][1] * _scale(path, cols["x"][0], units["x"], _LENGTH, "displacement")
+        if stiffness is not None:
+            notes.append("--stiffness ignored: the record gives the displacement x itself")
+        y, y_force = None, False
+        if "y" in cols:
+            y = cols["y"][1] * _scale(path, cols["y"][0], units["y"], _LENGTH, "displacement")
+        elif "N" in cols:
+            y, y_force = cols["N"][1] * _scale(path, cols["N"][0], units["N"], _FORCE, "force"), True
+    else:
+        if stiffness is None:
+            _fail(f"{path}: a force record (column {cols['F'][0]}): --stiffness K (N/m, the tangential spring) "
+                  f"is needed to turn the force into the spring's extension")
+        if not (math.isfinite(stiffness) and stiffness > 0):
+            _fail(f"--stiffness {stiffness}: the stiffness must be a positive number (N/m)")
+        F = cols["F"][1] * _scale(path, cols["F"][0], units["F"], _FORCE, "force")
+        x = F / stiffness * 1e3
+        y, y_force = None, False
+        if "N" in cols:
+            y, y_force = cols["N"][1] * _scale(path, cols["N"][0], units["N"], _FORCE, "force"), True
+        elif "y" in cols:
+            y = cols["y"][1] * _scale(path, cols["y"][0], units["y"], _LENGTH, "displacement")
+    # the drive
+    vcol = pos = None
+    if "v0" in cols:
+        vcol = cols["v0"][1] * _scale(path, cols["v0"][0], units["v0"], _VELOCITY, "velocity")
+    elif "position" in cols:
+        pos = cols["position"][1] * _scale(path, cols["position"][0], units["position"], _LENGTH, "position")
+    elif v0 is None:
+        _fail(f"{path}: no drive column (v0 or position) and no --v0: the drive velocity is needed")
+    if v0 is not None and (vcol is not None or pos is not None):
+        notes.append("--v0 ignored: the record gives the drive")
+    if v0 is not None and vcol is None and pos is None:
+        if not (math.isfinite(v0) and v0 != 0):
+            _fail(f"--v0 {v0}: the drive velocity must be a non-zero number (mm/s)")
+    rec = _regularise(path, t, {"x": x, "y": y, "v0": vcol, "pos": pos}, notes)
+    t, x, y, vcol, pos = rec["t"], rec["x"], rec["y"], rec["v0"], rec["pos"]
+    dt = float(t[1] - t[0])
+    if vcol is not None:
+        vd, recorded = vcol, True
+    elif pos is not None:
+        vd, recorded = _smooth_derivative(pos, dt, 0.02 / dt), True
+        if np.ptp(pos) == 0:
+            _fail(f"{path}: column {cols['position'][0]}: the drive never moves")
+    else:
+        vd, recorded = np.full_like(t, float(v0)), False
+    if not np.any(np.abs(vd) > 0):
+        _fail(f"{path}: the drive never moves (all zero): no stick-slip")
+    out = Record(t=t, x=x, vd=vd, y=y, y_is_force=y_force, drive_recorded=recorded, source=str(path), notes=notes)
+    condition(out)
+    return out
+
+
+def record_from_arrays(t, x, v0, y=None, *, y_is_force=False, source="arrays") -> Record:
+    """A record from arrays: t (s), x (mm), v0 (mm/s: a number or an array per
+    sample), optional normal channel y.  Resampled and conditioned like a file."""
+    t = np.asarray(t, float)
+    x = np.asarray(x, float)
+    if t.shape != x.shape or t.ndim != 1 or t.size < MIN_SAMPLES:
+        _fail(f"t and x must be 1-D arrays of equal length >= {MIN_SAMPLES}")
+    arrays = [t, x] + ([np.asarray(y, float)] if y is not None else [])
+    if not all(np.all(np.isfinite(a)) for a in arrays):
+        _fail("t, x and y must be finite")
+    if np.any(np.diff(t) <= 0):
+        _fail("t must increase")
+    notes = []
+    vcol = None if np.ndim(v0) == 0 else np.asarray(v0, float)
+    if vcol is None and not (math.isfinite(float(v0)) and float(v0) != 0):
+        _fail(f"v0 {v0}: the drive velocity must be a non-zero number (mm/s)")
+    rec = _regularise(source, t, {"x": x, "y": None if y is None else np.asarray(y, float), "v0": vcol,
+                                  "pos": None}, notes)
+    vd = rec["v0"] if vcol is not None else np.full_like(rec["t"], float(v0))
+    out = Record(t=rec["t"], x=rec["x"], vd=vd, y=rec["y"], y_is_force=y_is_force, drive_recorded=vcol is not None,
+                 source=source, notes=notes)
+    condition(out)
+    return out
+
+
+def _regularise(path, t, chans, notes) -> dict:
+    """The channels on an even grid at the median interval (linear
+    interpolation), with a note when the record was uneven or had gaps."""
+    d = np.diff(t)
+    dt = float(np.median(d))
+    if not dt > 0 or not math.isfinite(dt):
+        _fail(f"{path}: column t: no usable sampling interval")
+    span = float(t[-1] - t[0])
+    if span / dt > MAX_SAMPLES:
+        _fail(f"{path}: column t: {span:g} s at {dt:g} s would be {span / dt:.3g} samples, more than "
+              f"{MAX_SAMPLES}")
+    out = {"t": t, **chans}
+    if np.max(d) > 1.01 * dt or np.min(d) < 0.99 * dt:
+        gaps = int(np.count_nonzero(d > 1.5 * dt))
+        tu = t[0] + dt * np.arange(int(math.floor(span / dt + 1e-9)) + 1)
+        out = {"t": tu}
+        for k, v in chans.items():
+            out[k] = None if v is None else np.interp(tu, t, v)
+        notes.append(f"uneven sampling ({d.min():.4g} to {d.max():.4g} s; {gaps} gaps longer than 1.5 intervals): "
+                     f"resampled linearly onto {dt:.4g} s")
+    return out
+
+
+# ------------------------------------------------------------------ conditioning
+
+def noise_level(x) -> float:
+    """The white-noise level of a trace (its units): the median absolute
+    second difference over 0.6745 sqrt(6) (robust to slips and spikes)."""
+    if x.size < 5:
+        return 0.0
+    d2 = np.diff(x, 2)
+    return float(np.median(np.abs(d2 - np.median(d2))) / 0.6745 / math.sqrt(6.0))
+
+
+def despike(x, k: float = 8.0):
+    """Isolated spikes: a sample that stands out from both neighbours in the
+    same direction by more than k noise levels while the neighbours agree
+    with each other.  Returns the cleaned copy and the count replaced."""
+    s = noise_level(x)
+    if x.size < 5 or s <= 0:
+        return x, 0
+    y = x.copy()
+    total = 0
+    for _ in range(3):
+        a = y[1:-1] - y[:-2]
+        b = y[1:-1] - y[2:]
+        nb = np.abs(y[2:] - y[:-2])
+        hit = (np.sign(a) == np.sign(b)) & (np.minimum(np.abs(a), np.abs(b)) > k * s) & \
+              (nb < 0.5 * np.minimum(np.abs(a), np.abs(b)))
+        idx = np.flatnonzero(hit) + 1
+        if not idx.size:
+            break
+        y[idx] = 0.5 * (y[idx - 1] + y[idx + 1])
+        total += idx.size
+    return y, total
+
+
+def _hum_lines(x, dt):
+    """Mains lines (50/60 Hz and harmonics below Nyquist) that stand far
+    above the spectrum beside them: [(frequency, amplitude, a, b)]."""
+    n = x.size
+    T = n * dt
+    if T * 50 < 20:
+        return []
+    s = x - np.mean(x)
+    w = np.hanning(n)
+    S = np.abs(np.fft.rfft(s * w))
+    f = np.fft.rfftfreq(n, dt)
+    found = []
+    nyq = 0.5 / dt
+    tt = np.arange(n) * dt
+    for base in (50.0, 60.0):
+        for h in (1, 2, 3):
+            fh = base * h
+            if fh > 0.95 * nyq:
+                continue
+            k = int(round(fh * T))
+            lo, hi = max(k - 40, 1), min(k + 41, S.size)
+            side = np.r_[S[lo:max(k - 3, lo)], S[min(k + 4, hi):hi]]
+            if side.size < 10:
+                continue
+            peak = float(np.max(S[max(k - 2, 0):k + 3]))
+            if peak > 30.0 * float(np.median(side)):
+                # refine the frequency and fit the line by least squares
+                best = None
+                for ff in fh + np.linspace(-1.0, 1.0, 41) / T:
+                    c = np.cos(2 * math.pi * ff * tt)
+                    sn = np.sin(2 * math.pi * ff * tt)
+                    a = 2 * float(np.dot(s, c)) / n
+                    b = 2 * float(np.dot(s, sn)) / n
+                    if best is None or a * a + b * b > best[1] ** 2:
+                        best = (ff, math.hypot(a, b), a, b)
+                found.append(best)
+    return found
+
+
+def condition(rec: Record) -> None:
+    """Spikes and mains hum out of x (and y), in place, with notes."""
+    for name in ("x", "y"):
+        v = getattr(rec, name)
+        if v is None:
+            continue
+        v, nsp = despike(v)
+        if nsp:
+            rec.notes.append(f"{nsp} isolated spikes in {name} replaced by their neighbours' mean")
+        tt = rec.t - rec.t[0]
+        for ff, amp, a, b in _hum_lines(v, rec.dt):
+            v = v - a * np.cos(2 * math.pi * ff * tt) - b * np.sin(2 * math.pi * ff * tt)
+            rec.notes.append(f"mains hum at {ff:.2f} Hz in {name} (amplitude {amp:.3g}) removed")
+        setattr(rec, name, v)
+
+
+def record_from_trc_deck(path, v0: float | None) -> tuple[Record, float]:
+    """A thesis-style TRC deck (App. 7) as a record: the calibrated readings
+    T, X, XN (s, mm, mm; XN becomes y) resampled linearly onto an even grid
+    at the median reading interval.  Returns the record and the natural
+    frequency the deck gives (OMNH, rad/s, in Hz)."""
+    from ..cards import read_deck
+
+    deck = read_deck(path, program="trc")
+    t, x, xn = deck.calibrated()
+    if np.any(np.diff(t) <= 0):
+        _fail(f"{path}: the readings' times do not increase (NT): cannot be resampled")
+    if v0 is None:
+        _fail(f"{path}: a TRC deck does not give the drive velocity: --v0 is needed")
+    if not (math.isfinite(v0) and v0 != 0):
+        _fail(f"--v0 {v0}: the drive velocity must be a non-zero number (mm/s)")
+    notes = []
+    y = xn if np.any(xn != 0) else None
+    rec = _regularise(path, t, {"x": x, "y": y, "v0": None, "pos": None}, notes)
+    if rec["t"].size < MIN_SAMPLES:
+        _fail(f"{path}: {rec['t'].size} samples after resampling: too short for stick-slip analysis")
+    omnh = abs(deck.omnh)
+    fn = omnh / (2 * math.pi) if math.isfinite(omnh) and omnh > 0 else None
+    out = Record(t=rec["t"], x=rec["x"], vd=np.full_like(rec["t"], float(v0)), y=rec["y"], source=str(path),
+                 notes=notes, fn_hint=fn)
+    return out, fn

@@ -1,0 +1,364 @@
+"""Stage 2 of ``lieng diagnose``: strokes, stick-slip cycles and the natural
+frequency.
+
+* **Strokes.**  A drive that reverses (a reciprocating rig) is cut where its
+  sign changes; the dwells between strokes of opposite direction are left
+  out (holds between strokes of one direction are kept: they are part of
+  the stick).  Each stroke is turned to the forward direction (x and the
+  drive times its sign), so that every stroke is a forward stick-slip trace.
+* **Orientation.**  Labs write the friction force with either sign; x is
+  turned so that it rises at the drive velocity while the slider sticks.
+* **Cycles.**  Alternating extrema of the lightly smoothed x with a
+  hysteresis of a quarter of the typical swing (no natural frequency
+  needed): a drop is a slip when it is faster than the rise before it.
+* **Natural frequency.**  From x inside the slips: between the peak and
+  the trough the slider swings a half natural period about the friction
+  level (exactly, for any level, also one that steps where the sliding
+  speed peaks), so each slip is fitted by arcs of one frequency; the
+  frequency that fits all slips best, with a jackknife over slips for its
+  uncertainty.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import LiengInputError
+from .read import Record, noise_level
+
+__all__ = ["Stroke", "Prepared", "Cycles", "prepare", "find_cycles", "estimate_fn", "smooth"]
+
+
+@dataclass
+class Stroke:
+    """A part of the record with one drive direction: samples [i0, i1) of the
+    original record, the direction (+1/-1), and where it starts in the
+    prepared (concatenated) arrays."""
+
+    i0: int
+    i1: int
+    sign: int
+    j0: int = 0
+
+    @property
+    def n(self) -> int:
+        return self.i1 - self.i0
+
+
+@dataclass
+class Cycles:
+    """Stick-slip cycles of a prepared record (indices into its arrays).
+
+    ``peak_i[k]`` is the peak before slip k, ``trough_i[k]`` its trough;
+    cycle k runs from peak k to peak k+1 within one stroke (``next_ok[k]``)."""
+
+    peak_i: np.ndarray
+    trough_i: np.ndarray
+    stroke: np.ndarray
+    next_ok: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    win: int
+
+    @property
+    def n(self) -> int:
+        return int(self.peak_i.size)
+
+    def drops(self, x) -> np.ndarray:
+        return x[self.peak_i] - x[self.trough_i]
+
+    def amplitude(self, x) -> float:
+        return float(np.median(self.drops(x))) if self.n else 0.0
+
+    def periods(self, t) -> np.ndarray:
+        k = np.flatnonzero(self.next_ok)
+        return t[self.peak_i[k + 1]] - t[self.peak_i[k]]
+
+    def rises(self, t) -> np.ndarray:
+        k = np.flatnonzero(self.next_ok)
+        return t[self.peak_i[k + 1]] - t[self.trough_i[k]]
+
+
+@dataclass
+class Prepared:
+    """The record turned forward stroke by stroke, and concatenated."""
+
+    t: np.ndarray
+    x: np.ndarray
+    vd: np.ndarray
+    y: np.ndarray | None
+    strokes: list
+    dt: float
+    flipped: bool
+    notes: list = field(default_factory=list)
+
+    def stroke_slices(self):
+        return [slice(s.j0, s.j0 + s.n) for s in self.strokes]
+
+
+def smooth(x, dt, fn, deriv=0, win=None):
+    """Savitzky-Golay (cubic) over a quarter natural period (or ``win``
+    samples), derivative ``deriv``; short traces are returned unfiltered."""
+    from scipy.signal import savgol_filter
+
+    w = win if win is not None else max(int(round(0.25 / fn / dt)) | 1, 7)
+    w = int(w) | 1
+    if w >= x.size:
+        w = (x.size - 2) | 1
+    if w < 5:
+        return np.gradient(x, dt) if deriv == 1 else (x if deriv == 0 else np.gradient(np.gradient(x, dt), dt))
+    return savgol_filter(x, w, 3 if w > 5 else 2, deriv=deriv, delta=dt)
+
+
+def _runs(mask):
+    """Start and end (exclusive) of the True runs of a boolean array."""
+    d = np.diff(np.r_[0, mask.astype(np.int8), 0])
+    return np.flatnonzero(d == 1), np.flatnonzero(d == -1)
+
+
+def strokes(vd, min_samples: int = 20) -> list:
+    """Strokes of one drive direction (see the module docstring)."""
+    a = np.abs(vd)
+    moving = a > 0.05 * float(np.percentile(a[a > 0], 90)) if np.any(a > 0) else a > 0
+    sgn = np.where(moving, np.sign(vd), 0).astype(int)
+    s0, s1 = _runs(sgn != 0)
+    out = []
+    for i0, i1 in zip(s0, s1):
+        d = int(np.sign(np.sum(sgn[i0:i1])))
+        if out and out[-1].sign == d:
+            out[-1].i1 = int(i1)          # a hold between two runs of one direction: part of the stick
+        else:
+            out.append(Stroke(int(i0), int(i1), d))
+    return [s for s in out if s.n >= min_samples]
+
+
+def prepare(rec: Record) -> Prepared:
+    """Strokes turned forward and concatenated; x oriented so that it rises
+    with the drive in the sticks."""
+    st = strokes(rec.vd)
+    if not st:
+        raise LiengInputError(f"{rec.source}: the drive never moves long enough to analyse (no stroke of 20 samples)")
+    dt = rec.dt
+    xs, vs, ys, ts = [], [], [], []
+    j = 0
+    for s in st:
+        s.j0 = j
+        j += s.n
+        sl = slice(s.i0, s.i1)
+        xs.append(s.sign * rec.x[sl])
+        vs.append(s.sign * rec.vd[sl])
+        ts.append(rec.t[sl])
+        if rec.y is not None:
+            ys.append(rec.y[sl])
+    x = np.concatenate(xs)
+    vd = np.concatenate(vs)
+    # orientation: in the sticks x moves with the drive; the slips are short,
+    # so the median of x' / vd over the moving samples has the sign of the rise
+    v = np.concatenate([np.gradient(smooth(xx, dt, 1.0, 0, win=9), dt) for xx in xs])
+    mv = np.abs(vd) > 0
+    flipped = bool(np.median(v[mv] / vd[mv]) < 0)
+    notes = []
+    if flipped:
+        x = -x
+        notes.append("the force is written opposite to the drive in this record: its sign was turned")
+    if len(st) > 1 or st[0].sign < 0:
+        nb = sum(1 for s in st if s.sign < 0)
+        notes.append(f"{len(st)} strokes ({len(st) - nb} forward, {nb} backward), each turned forward")
+    return Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
+                    strokes=st, dt=dt, flipped=flipped, notes=notes)
+
+
+def _zigzag(x, h):
+    """Alternating extrema of x with hysteresis h: (indices, kinds) with kind
+    +1 for a maximum, -1 for a minimum."""
+    idx, kind = [], []
+    imax = imin = 0
+    trend = 0
+    for i in range(1, x.size):
+        xi = x[i]
+        if trend >= 0:
+            if xi > x[imax]:
+                imax = i
+            elif x[imax] - xi > h:
+                idx.append(imax)
+                kind.append(1)
+                trend, imin = -1, i
+                continue
+        if trend <= 0:
+            if xi < x[imin]:
+                imin = i
+            elif xi - x[imin] > h:
+                idx.append(imin)
+                kind.append(-1)
+                trend, imax = 1, i
+    return np.asarray(idx, int), np.asarray(kind, int)
+
+
+def _zigzag_fast(x, h):
+    """The same as :func:`_zigzag`, vectorised over candidate extrema (local
+    maxima and minima) so that long records take linear time in numpy."""
+    d = np.diff(x)
+    sgn = np.sign(d)
+    # indices where the slope changes sign (plateaus resolved to the left)
+    nz = np.flatnonzero(sgn != 0)
+    if nz.size < 2:
+        return np.array([], int), np.array([], int)
+    s = sgn[nz]
+    ch = np.flatnonzero(np.diff(s) != 0)
+    cand = nz[ch + 1]
+    cand = np.r_[0, cand, x.size - 1]
+    return _zigzag_on(x, cand, h)
+
+
+def _zigzag_on(x, cand, h):
+    vals = x[cand]
+    idx, kind = [], []
+    imax = imin = 0
+    trend = 0
+    for k in range(1, cand.size):
+        xi = vals[k]
+        if trend >= 0:
+            if xi > vals[imax]:
+                imax = k
+            elif vals[imax] - xi > h:
+                idx.append(cand[imax])
+                kind.append(1)
+                trend, imin = -1, k
+                continue
+        if trend <= 0:
+            if xi < vals[imin]:
+                imin = k
+            elif xi - vals[imin] > h:
+                idx.append(cand[imin])
+                kind.append(-1)
+                trend, imax = 1, k
+    return np.asarray(idx, int), np.asarray(kind, int)
+
+
+def find_cycles(p: Prepared, fn: float | None) -> Cycles:
+    """The stick-slip cycles of every stroke (see the module docstring)."""
+    dt = p.dt
+    light = [smooth(p.x[sl], dt, 1.0, 0, win=5 if fn is None or 0.25 / fn / dt < 9 else
+                    max(5, int(0.08 / fn / dt) | 1)) for sl in p.stroke_slices()]
+    allx = np.concatenate(light)
+    noise = noise_level(p.x)
+    peaks, troughs, strk, nxt = [], [], [], []
+    vs, acc = [], []
+    win = None
+    for k, (s, xl) in enumerate(zip(p.strokes, light)):
+        sl = slice(s.j0, s.j0 + s.n)
+        xr = p.x[sl]
+        if fn is not None:
+            win = max(int(round(0.25 / fn / dt)) | 1, 7)
+            vs.append(smooth(xr, dt, fn, 1))
+            acc.append(smooth(xr, dt, fn, 2))
+        else:
+            vs.append(smooth(xr, dt, 1.0, 1, win=7))
+            acc.append(smooth(xr, dt, 1.0, 2, win=7))
+        span = float(np.percentile(xl, 98) - np.percentile(xl, 2))
+        h0 = max(0.25 * span, 8 * noise)
+        ix, kd = _zigzag_fast(xl, h0)
+        if ix.size >= 4:
+            sw = np.abs(np.diff(xl[ix]))
+            h = max(0.3 * float(np.median(sw)), 8 * noise)
+            ix, kd = _zigzag_fast(xl, h)
+        last_peak = None
+        for m in range(ix.size - 1):
+            if kd[m] != 1 or kd[m + 1] != -1:
+                continue
+            pi_, ti_ = ix[m], ix[m + 1]
+            fall = ti_ - pi_
+            rise = pi_ - ix[m - 1] if m >= 1 else None
+            if rise is not None and not fall < rise:
+                last_peak = None
+                continue            # not a slip: as slow as the rise before it
+            if fall < 1:
+                continue
+            peaks.append(s.j0 + pi_)
+            troughs.append(s.j0 + ti_)
+            strk.append(k)
+            nxt.append(False)
+            if last_peak is not None:
+                nxt[-2] = True
+            last_peak = len(peaks) - 1
+    del allx
+    c = Cycles(peak_i=np.asarray(peaks, int), trough_i=np.asarray(troughs, int), stroke=np.asarray(strk, int),
+               next_ok=np.asarray(nxt, bool), v=np.concatenate(vs), a=np.concatenate(acc),
+               win=win if win is not None else 7)
+    return c
+
+
+def _arc_rss(slips, w, with_step=True):
+    """Pooled RSS of arcs of frequency w fitted to each slip (x = c + A cos +
+    B sin [+ step after the sliding-speed peak]), slip by slip (linear)."""
+    rss = 0.0
+    for tt, xx, ts in slips:
+        cols = [np.ones(tt.size), np.cos(w * tt), np.sin(w * tt)]
+        if with_step:
+            cols.append(np.where(tt > ts, 1.0 - np.cos(w * (tt - ts)), 0.0))
+        A = np.column_stack(cols)
+        coef, res, rank, _ = np.linalg.lstsq(A, xx, rcond=None)
+        r = xx - A @ coef
+        rss += float(r @ r)
+    return rss
+
+
+def slip_arcs(p: Prepared, c: Cycles, extend: int = 1):
+    """The slips as (time from the peak, x, time of the sliding-speed peak),
+    from one sample before the peak to one after the trough."""
+    out = []
+    for pi_, ti_ in zip(c.peak_i, c.trough_i):
+        lo, hi = pi_, ti_ + 1
+        if hi - lo < 4:
+            lo, hi = max(pi_ - extend, 0), min(ti_ + 1 + extend, p.x.size)
+        if hi - lo < 4:
+            continue
+        seg = np.arange(lo, hi)
+        k = seg[int(np.argmin(c.v[seg]))] if seg.size > 2 else seg[seg.size // 2]
+        out.append((p.t[seg] - p.t[pi_], p.x[seg], p.t[k] - p.t[pi_]))
+    return out
+
+
+def estimate_fn(p: Prepared, c: Cycles, fn_guess: float | None = None):
+    """The natural frequency from the slips (module docstring): (fn, its
+    standard error, the number of slips used), or (None, None, 0) when the
+    slips cannot fix it."""
+    dur = (p.t[c.trough_i] - p.t[c.peak_i])
+    dur = dur[dur > 0]
+    if dur.size < 3:
+        return None, None, 0
+    f0 = fn_guess if fn_guess else 0.5 / float(np.median(dur))
+    slips = slip_arcs(p, c)
+    if len(slips) < 3:
+        return None, None, 0
+    if len(slips) > 400:                       # plenty: an even subset keeps it linear in time
+        slips = [slips[i] for i in np.linspace(0, len(slips) - 1, 400).astype(int)]
+    grid = f0 * np.geomspace(0.6, 1.6, 61)
+
+    def best(sl):
+        r = np.array([_arc_rss(sl, 2 * math.pi * f) for f in grid])
+        k = int(np.argmin(r))
+        if 0 < k < grid.size - 1:
+            # parabolic refinement in log f
+            y0, y1, y2 = r[k - 1], r[k], r[k + 1]
+            den = y0 - 2 * y1 + y2
+            off = 0.5 * (y0 - y2) / den if den > 0 else 0.0
+            return float(grid[k] * (grid[1] / grid[0]) ** off), True
+        return float(grid[k]), False
+
+    f, interior = best(slips)
+    if not interior:
+        return None, None, len(slips)
+    # jackknife over groups of slips for the uncertainty
+    g = min(10, len(slips))
+    parts = np.array_split(np.arange(len(slips)), g)
+    est = []
+    for idx in parts:
+        keep = set(idx.tolist())
+        est.append(best([s for i, s in enumerate(slips) if i not in keep])[0])
+    est = np.asarray(est)
+    se = float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
+    return f, se, len(slips)
