@@ -93,6 +93,25 @@ def _is_csv(path) -> bool:
     return "t" in [c.strip() for c in first.split(",")]
 
 
+def _is_table(path) -> bool:
+    """A delimited table with a header naming a time column (comma, TAB,
+    semicolon or whitespace), rather than a card deck."""
+    p = Path(path)
+    if p.suffix.lower() in (".csv", ".tsv", ".txt") and _is_csv(p):
+        return True
+    try:
+        if not p.is_file():
+            return True                     # let the table reader name the problem
+        with open(p, encoding="utf-8", errors="replace") as fh:
+            first = fh.readline(4096)
+    except OSError:
+        return True
+    import re
+
+    cells = [c.strip().lower() for c in re.split(r"[,;\t]|\s+", first) if c.strip()]
+    return any(c in ("t", "time") or c.startswith(("t[", "t(", "time[", "time(")) for c in cells)
+
+
 def _run_trc(args) -> int:
     from .cards import read_deck
     from .graf import trc_plots
@@ -190,32 +209,31 @@ def _sweep(args) -> int:
 
 def _diagnose(args) -> int:
     import json
+    import sys
 
-    from .diagnose import diagnose, read_record, record_from_trc_deck, write_outputs
+    from .diagnose import diagnose, read_record, record_from_trc_deck
+    from .diagnose.report import summary_lines, write_outputs
     from .outputs import staged_outdir
 
     fn = args.fn
-    if _is_csv(args.data):
-        if fn is None:
-            raise LiengInputError(f"{args.data}: --fn (natural frequency of the tangential mode, Hz) is needed")
-        rec = read_record(args.data, v0=args.v0)
+    if _is_table(args.data):
+        rec = read_record(args.data, v0=args.v0, stiffness=args.stiffness)
     else:                                   # a thesis-style TRC deck: OMNH gives fn
         rec, fn_deck = record_from_trc_deck(args.data, args.v0)
         fn = fn_deck if fn is None else fn
-    if not fn > 0:
-        raise LiengInputError(f"--fn {fn}: the natural frequency of the tangential mode must be positive (Hz)")
-    keep: dict = {}
-    d = diagnose(rec, fn, args.fnv, keep=keep)
+    progress = None
+    if sys.stderr.isatty() and not args.quiet:
+        def progress(k, n):
+            print(f"\rcalibrating against the baseline: replicate {k}/{n}", end="" if k < n else "\n",
+                  file=sys.stderr, flush=True)
+    d = diagnose(rec, fn, progress=progress)
     with staged_outdir(args.outdir) as tmp:
-        write_outputs(d, keep, tmp, str(args.data))
+        names = write_outputs(d, tmp, str(args.data), plots=not args.no_plots)
     if args.json:
-        print(json.dumps(d.to_json(), indent=2))
+        print(json.dumps(d.to_json(), indent=2, allow_nan=False))
     elif not args.quiet:
-        print(f"{args.data}: effect {d.effect}; gain {d.gain:.3f} (baseline error {d.baseline_error:.4g}, extended "
-              f"{d.extended_error:.4g})")
-        print("scores: " + ", ".join(f"{k} {v:.2f}" for k, v in d.scores.items()))
-        print(f"wrote {Path(args.outdir) / 'diagnosis.json'}, report.md, trace.png, phase_plane.png, "
-              f"characteristic.png, spectrum.png")
+        print("\n".join(summary_lines(d, str(args.data))))
+        print(f"wrote {Path(args.outdir) / names[0]}, " + ", ".join(names[1:]))
     return 0
 
 
@@ -230,7 +248,7 @@ def _synth(args) -> int:
     rec.write_csv(tmp)
     tmp.replace(out)
     if not args.quiet:
-        extra = "" if rec.y is None else f" --fnv {rec.fnv:.6g}"
+        extra = ""
         v0 = "" if rec.v0_col is not None else f" --v0 {rec.v0:.6g}"
         print(f"wrote {out} ({rec.t.size} samples); analyse with: lieng diagnose {out}{v0} --fn {rec.fn:.6g}{extra} "
               f"-o DIR")
@@ -333,18 +351,21 @@ def build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--v0", metavar="START:STOP:N", help="driving velocities (mm/s)")
     sw.add_argument("--dmu", metavar="START:STOP:N", help="factors of the deck's dmu0 (1 = the deck)")
     w.add_argument("--at-v0", type=float, metavar="V", help="with --dmu: the driving velocity (default: the deck's)")
-    dg = sub.add_parser("diagnose", help="what the 1-DoF model gets wrong on a measured trace, and why",
-                        description="Fit the thesis's 1-DoF model to a measured stick-slip record, name the "
-                                    "effect it misses (load_variation, twin_branch, static_ageing, triggering, "
-                                    "drive_modulation or none), fit the extended model and measure the gain on "
-                                    "the last 30 %% of the record.")
-    dg.add_argument("data", help="CSV with t (s), x (mm), optional y (mm), optional v0 (mm/s), or a TRC deck")
-    dg.add_argument("--v0", type=float, help="nominal drive velocity (mm/s) when there is no v0 column")
-    dg.add_argument("--fn", type=float, help="natural frequency of the tangential mode (Hz); a TRC deck gives "
-                    "it (OMNH)")
-    dg.add_argument("--fnv", type=float, help="natural frequency of the normal mode (Hz), with y")
+    dg = sub.add_parser("diagnose", help="what the 1-DoF model gets wrong on a measured record, and why",
+                        description="Fit the thesis's 1-DoF model (a single-valued characteristic of general "
+                                    "shape, constant load and drive) to a measured stick-slip record, test each "
+                                    "candidate effect against the fitted baseline's own replicates (family-wise "
+                                    "false-alarm rate 5 percent), fit the extension of each effect named and "
+                                    "measure its gain on the held-out last 30 percent of the record.")
+    dg.add_argument("data", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
+                    "the header (comma, TAB or whitespace), or a TRC deck")
+    dg.add_argument("--v0", type=float, help="drive velocity (mm/s) when the record has no v0/position column")
+    dg.add_argument("--fn", type=float, help="natural frequency of the tangential mode (Hz); estimated from the "
+                    "slips when not given (a TRC deck gives it: OMNH)")
+    dg.add_argument("--stiffness", type=float, help="tangential stiffness (N/m): needed for a force record")
     dg.add_argument("-o", "--outdir", required=True, help="output directory")
     dg.add_argument("--json", action="store_true", help="print diagnosis.json")
+    dg.add_argument("--no-plots", action="store_true", help="write diagnosis.json and report.md only")
     dg.add_argument("-q", "--quiet", action="store_true")
     sy = sub.add_parser("synth", help="synthetic measured data with an effect hidden in it",
                         description="Write a synthetic stick-slip record (t,x[,y][,v0]) with realistic noise "

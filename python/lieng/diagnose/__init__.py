@@ -1,1 +1,229 @@
-"""``lieng diagnose`` (package; see the stage modules)."""
+"""``lieng diagnose``: what the thesis's 1-DoF model gets wrong on a measured
+stick-slip record, which effect causes it, and how much an extended model
+gains.
+
+One module per stage: :mod:`.read` (records as labs record them),
+:mod:`.segment` (strokes, cycles, natural frequency), :mod:`.baseline` (the
+thesis's model identified from the record), :mod:`.evidence` (one effect
+size per candidate), :mod:`.decide` (calibration against the fitted
+baseline's own replicates, Holm), :mod:`.extend` (nested extensions, held-out
+gain), :mod:`.report` (diagnosis.json, report.md, plots).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import LiengInputError
+from .baseline import Params, fit_baseline, simulate
+from .decide import ALPHA, decide, null_replicates
+from .evidence import CANDIDATES, MARGIN, statistics, y_on_motion
+from .extend import METRIC, Judge, candidates, gain, split
+from .read import Record, read_record, record_from_arrays, record_from_trc_deck
+from .segment import Cycles, estimate_fn, find_cycles, prepare
+
+__all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
+           "diagnose", "FN_UNCERTAINTY"]
+
+#: the relative uncertainty a user-given --fn is taken to have
+FN_UNCERTAINTY = 0.05
+
+
+def _finite(v):
+    """JSON-safe: non-finite floats become None, numpy scalars Python ones."""
+    if isinstance(v, dict):
+        return {k: _finite(a) for k, a in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_finite(a) for a in v]
+    if isinstance(v, (np.floating, float)):
+        return float(v) if math.isfinite(v) else None
+    if isinstance(v, (np.integer,)):
+        return int(v)
+    if isinstance(v, np.bool_):
+        return bool(v)
+    return v
+
+
+@dataclass
+class Diagnosis:
+    """The result of :func:`diagnose`.
+
+    Attributes
+    ----------
+    effect : str
+        The primary effect named, ``"none"``, ``"unexplained"`` or
+        ``"no_stick_slip"``.
+    effects : list of dict
+        Every effect named: name, effect size and interval, p, gain and its
+        interval.
+    evidence : dict
+        Per candidate: statistic, null mean and spread, z, p, significant,
+        named, margin.
+    gain : float
+        1 - e_extended / e_baseline on the held-out cycles (primary effect).
+    """
+
+    effect: str
+    reason: str
+    effects: list = field(default_factory=list)
+    evidence: dict = field(default_factory=dict)
+    fn: float = 0.0
+    fn_source: str = ""
+    fn_data: float | None = None
+    fn_data_se: float | None = None
+    baseline: Params | None = None
+    extended: Params | None = None
+    baseline_error: float = 0.0
+    extended_error: float = 0.0
+    gain: float = 0.0
+    gain_interval: list = field(default_factory=lambda: [0.0, 0.0])
+    n_cycles: int = 0
+    n_replicates: int = 0
+    drop: float = 0.0
+    notes: list = field(default_factory=list)
+    warnings: list = field(default_factory=list)
+    plot: dict = field(default_factory=dict, repr=False)
+
+    def to_json(self) -> dict:
+        d = {"effect": self.effect, "reason": self.reason, "gain": self.gain, "gain_interval_90": self.gain_interval,
+             "baseline_error": self.baseline_error, "extended_error": self.extended_error, "metric": METRIC,
+             "effects": self.effects, "evidence": self.evidence,
+             "calibration": {"method": "parametric bootstrap of the fitted baseline (fn drawn within its "
+                                       "uncertainty, noise at the record's level); Holm over the candidates",
+                             "family_wise_alpha": ALPHA, "replicates": self.n_replicates},
+             "natural_frequency_hz": {"used": self.fn, "source": self.fn_source, "from_slips": self.fn_data,
+                                      "from_slips_se": self.fn_data_se},
+             "cycles": self.n_cycles, "drop_mm": self.drop,
+             "fitted": {"baseline": self.baseline.to_json() if self.baseline else None,
+                        "extended": self.extended.to_json() if self.extended else None},
+             "units": {"x": "mm", "t": "s", "velocity": "mm/s", "frequency": "Hz",
+                       "effect_size": "per evidence row: over the drop D, or relative"},
+             "notes": self.notes, "warnings": self.warnings}
+        return _finite(d)
+
+
+def _subset(c: Cycles, sel) -> Cycles:
+    k = np.flatnonzero(sel)
+    nxt = c.next_ok[k] & np.r_[sel[k[:-1] + 1] if k.size else np.array([], bool), False][:k.size] \
+        if k.size else c.next_ok[k]
+    return Cycles(peak_i=c.peak_i[k], trough_i=c.trough_i[k], stroke=c.stroke[k], next_ok=nxt, v=c.v, a=c.a,
+                  win=c.win)
+
+
+def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budget: float = 25.0,
+             progress=None) -> Diagnosis:
+    """Diagnose a record (see the package docstring and the stage modules).
+
+    Parameters
+    ----------
+    rec : Record
+        From :func:`read_record` (or :func:`record_from_arrays`).
+    fn : float, optional
+        Natural frequency of the tangential mode (Hz).  Estimated from the
+        slips when not given; when given, taken to be within
+        :data:`FN_UNCERTAINTY` and checked against the slips.
+    replicates : int, optional
+        Baseline replicates for the calibration (fewer when ``budget``
+        seconds run out).
+    progress : callable, optional
+        Called as progress(done, total) during the calibration.
+
+    Returns
+    -------
+    Diagnosis
+    """
+    if fn is not None and not (math.isfinite(fn) and fn > 0):
+        raise LiengInputError(f"--fn {fn}: the natural frequency must be a positive number (Hz)")
+    pr = prepare(rec)
+    notes = list(rec.notes) + list(pr.notes)
+    warnings = []
+    if fn is not None and fn * pr.dt > 0.2:
+        raise LiengInputError(f"--fn {fn:g} Hz: the record has only {1 / (fn * pr.dt):.1f} samples per natural "
+                              f"period; at least 5 are needed")
+    c0 = find_cycles(pr, fn)
+    fd, fse, nsl = estimate_fn(pr, c0, fn) if c0.n >= 3 else (None, None, 0)
+    if fd is not None and not (fd * pr.dt < 0.2):
+        fd = None
+    if fn is None:
+        if fd is None:
+            if c0.n < 4:
+                return Diagnosis(effect="no_stick_slip", reason=f"{c0.n} stick-slip cycles found: the record does "
+                                 f"not show stick-slip (no drop faster than the rise before it)", notes=notes,
+                                 n_cycles=c0.n)
+            raise LiengInputError(f"{rec.source}: the natural frequency cannot be fixed from the slips "
+                                  f"({nsl} usable): give --fn (Hz)")
+        fn_used, src = fd, "estimated from the slips"
+        u_fn = max(FN_UNCERTAINTY, 3 * (fse or 0.0) / fd)
+        c0 = find_cycles(pr, fn_used)
+        fd2, fse2, _ = estimate_fn(pr, c0, fn_used) if c0.n >= 3 else (None, None, 0)
+        if fd2 is not None:
+            fd, fse = fd2, fse2
+            fn_used = fd
+    else:
+        fn_used, src, u_fn = float(fn), "given (--fn)", FN_UNCERTAINTY
+        if fd is not None and abs(fd / fn - 1.0) > 0.1:
+            warnings.append(f"the slips say fn = {fd:.4g} Hz (+- {fse or 0:.2g}), {100 * (fd / fn - 1):+.0f} % from "
+                            f"--fn {fn:g}: check --fn (the slip-shape evidence assumes it within "
+                            f"{100 * FN_UNCERTAINTY:.0f} %)")
+    if 1.0 / (fn_used * pr.dt) < 15:
+        warnings.append(f"{1.0 / (fn_used * pr.dt):.1f} samples per natural period: the slip-shape evidence is "
+                        f"weak below about 20")
+    c = find_cycles(pr, fn_used)
+    if c.n < 4:
+        return Diagnosis(effect="no_stick_slip", reason=f"{c.n} stick-slip cycles found: the record does not show "
+                         f"stick-slip (no drop faster than the rise before it)", fn=fn_used, fn_source=src,
+                         fn_data=fd, fn_data_se=fse, notes=notes, warnings=warnings, n_cycles=c.n)
+    base_all = fit_baseline(pr, c, fn_used)
+    if pr.y is not None:
+        base_all.y_c = y_on_motion(pr.x, c.v, pr.y)
+    st, se, aux = statistics(pr, c, fn_used, y_is_force=rec.y_is_force)
+    null, nrep = null_replicates(pr, base_all, fn_used, u_fn, B=replicates, budget=budget, progress=progress)
+    rows = decide(st, se, null)
+    named = [k for k in CANDIDATES if rows[k]["named"]]
+    named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
+
+    # fit on the training part, judge on the rest
+    tsplit = split(pr, c)
+    sel_tr = pr.t[c.peak_i] < tsplit
+    ctr = _subset(c, sel_tr)
+    base = fit_baseline(pr, ctr, fn_used) if ctr.n >= 3 else base_all
+    base.y_c = base_all.y_c
+    train = Judge(pr, c, fn_used, float(pr.t[0]), tsplit, aux.get("ylow"))
+    effects = []
+    primary_ext, primary_gain = base, None
+    for k in named:
+        cands = candidates(k, base, pr, c, fn_used, st, aux, tsplit)
+        ext = base
+        if cands:
+            errs = [train.error(p)[0] for p in cands]
+            if np.isfinite(min(errs)):
+                ext = cands[int(np.argmin(errs))]
+        g = gain(pr, c, fn_used, base, ext, tsplit, aux.get("ylow"))
+        r = rows[k]
+        effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
+                                "p": r["p"], "z": r["z"], "gain": g["gain"], "gain_interval_90": g["interval"],
+                                "extension": "none available" if ext is base else "fitted"}))
+        if primary_gain is None:
+            primary_ext, primary_gain = ext, g
+    g0 = primary_gain or gain(pr, c, fn_used, base, base, tsplit, aux.get("ylow"))
+    if named:
+        effect = named[0]
+        reason = "; ".join(f"{k}: size {rows[k]['effect_size']:+.3g} (margin {MARGIN[k]}), p = {rows[k]['p']:.2g}"
+                           for k in named) + f" (Holm, family-wise {ALPHA})"
+    else:
+        effect = "none"
+        best = min((k for k in CANDIDATES if rows[k]["applicable"]), key=lambda k: rows[k]["p"], default=None)
+        reason = ("no candidate both significant and above its relevance margin: the baseline explains the record "
+                  "within its noise" + (f" (smallest p: {best}, {rows[best]['p']:.2g})" if best else ""))
+    if nrep < 10:
+        warnings.append(f"only {nrep} baseline replicates could be analysed: the calibration is coarse")
+    return Diagnosis(effect=effect, reason=reason, effects=effects, evidence=_finite(rows), fn=fn_used, fn_source=src,
+                     fn_data=fd, fn_data_se=fse, baseline=base, extended=primary_ext,
+                     baseline_error=g0["e0"], extended_error=g0["e1"], gain=g0["gain"] if named else 0.0,
+                     gain_interval=g0["interval"] if named else [0.0, 0.0], n_cycles=c.n, n_replicates=nrep,
+                     drop=aux["D"], notes=notes, warnings=warnings,
+                     plot={"pr": pr, "c": c, "x_base": g0["x_base"], "x_ext": g0["x_ext"], "tsplit": tsplit,
+                           "fn": fn_used})

@@ -34,7 +34,7 @@ from .. import _core
 from ..errors import LiengInputError
 from .segment import Cycles, Prepared
 
-__all__ = ["Params", "simulate", "fit_baseline", "slip_friction"]
+__all__ = ["Params", "simulate", "fit_baseline", "slip_friction", "model_y"]
 
 #: quantile bins of the sliding velocity for the characteristic's table
 NBINS = 10
@@ -68,6 +68,10 @@ class Params:
     drv_ph: float = 0.0
     drift: float = 0.0             # friction level drift per second (mm/s), about the record's middle
     drift_t0: float = 0.0
+    trig_ax: float = 0.0           # the triggering line superposed on x: ax sin(2 pi f t + phx)
+    trig_phx: float = 0.0
+    trig_ay: float = 0.0           # and on the normal channel: ay sin(2 pi f t + phy)
+    trig_phy: float = 0.0
     y_c: tuple = (0.0, 0.0, 0.0)   # y = c0 + c1 x + c2 x' (the part of y locked to the motion)
 
     def copy(self, **kw) -> "Params":
@@ -139,10 +143,21 @@ def simulate(pr: Prepared, p: Params, fn: float, ylow=None, x0=None):
                                                 start)
         if status != 0:
             raise LiengInputError(f"the slider simulation failed (status {status}): check --fn and the record's units")
+        if p.trig_ax:
+            x = x + p.trig_ax * _sin(t, p.trig_f, p.trig_phx)
         xs.append(x)
         vs.append(v)
         ss.append(state)
     return np.concatenate(xs), np.concatenate(vs), np.concatenate(ss)
+
+
+def model_y(pr: Prepared, p: Params, x, v):
+    """The modelled normal channel: its part locked to the motion, plus the
+    triggering line."""
+    y = p.y_c[0] + p.y_c[1] * x + p.y_c[2] * v
+    if p.trig_ay:
+        y = y + p.trig_ay * _sin(pr.t, p.trig_f, p.trig_phy)
+    return y
 
 
 def slip_samples(c: Cycles, n: int):

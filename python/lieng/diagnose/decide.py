@@ -1,0 +1,120 @@
+"""Stage 5 of ``lieng diagnose``: calibrated decisions.
+
+Each candidate's statistic S (:mod:`.evidence`) is compared with its
+distribution under the fitted baseline, obtained by a **parametric
+bootstrap**: B records simulated from the baseline on the record's own time
+grid and drive, with white noise at the record's own noise level (x and the
+normal channel; the normal channel modelled as its part locked to the
+motion), and with the natural frequency drawn uniformly within its stated
+uncertainty (a ``--fn`` off by a few per cent is a nuisance, not an effect);
+each replicate is analysed exactly like the record, with the nominal fn.
+
+For candidate k: z = (S - m0) / sqrt(max(s0, se)**2 + s0**2 / B), with m0, s0
+the replicates' mean and spread and se the record's own standard error
+(its cycle-to-cycle scatter: a real rig is noisier than any simulation);
+p from the normal distribution (one-sided for effects with a direction).
+The family-wise false-alarm rate over the candidates is held at ALPHA by
+Holm's step-down procedure.  An effect is **named** when it is significant
+and its size S - m0 is at least the relevance margin stated in
+:data:`.evidence.MARGIN`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ..errors import LiengInputError
+from .baseline import Params, pr_like, simulate
+from .evidence import CANDIDATES, MARGIN, ONE_SIDED, statistics, y_on_motion
+from .read import noise_level
+from .segment import Prepared, find_cycles
+
+__all__ = ["ALPHA", "null_replicates", "decide"]
+
+#: family-wise false-alarm rate
+ALPHA = 0.05
+
+
+def _norm_sf(z):
+    return 0.5 * math.erfc(z / math.sqrt(2.0))
+
+
+def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int = 39, budget: float = 25.0,
+                    seed: int = 0, progress=None):
+    """The candidates' statistics on B baseline replicates (module docstring).
+
+    Returns a dict name -> array of the replicates' values, and the
+    replicates' simulated noiseless traces' first one (for plots)."""
+    rng = np.random.default_rng(seed)
+    sx = noise_level(pr.x)
+    y = pr.y
+    sy = noise_level(y) if y is not None else 0.0
+    vals = {k: [] for k in CANDIDATES}
+    t0 = time.perf_counter()
+    done = 0
+    for b in range(B):
+        fb = fn * (1.0 + u_fn * rng.uniform(-1.0, 1.0))
+        xs, vs, _ = simulate(pr, base, fb)
+        xb = xs + sx * rng.standard_normal(xs.size)
+        yb = None
+        if y is not None:
+            yb = base.y_c[0] + base.y_c[1] * xs + base.y_c[2] * vs + sy * rng.standard_normal(xs.size)
+        q = pr_like(pr, xb, yb)
+        try:
+            c = find_cycles(q, fn)
+            if c.n < 3:
+                continue
+            st, _, _ = statistics(q, c, fn, y=yb)
+        except (LiengInputError, np.linalg.LinAlgError, ValueError):
+            continue
+        for k in CANDIDATES:
+            vals[k].append(st[k])
+        done += 1
+        if progress:
+            progress(b + 1, B)
+        el = time.perf_counter() - t0
+        if b >= 8 and el * (b + 2) / (b + 1) > budget:
+            break
+    return {k: np.asarray(v, float) for k, v in vals.items()}, done
+
+
+def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None) -> dict:
+    """The evidence table: for every candidate the statistic, the null mean
+    and spread, z, p, Holm's decision and whether it is named."""
+    rows = {}
+    for k in CANDIDATES:
+        v = null.get(k, np.array([]))
+        v = v[np.isfinite(v)]
+        S = float(st[k])
+        ok = (applicable is None or k in applicable) and v.size >= 5 and math.isfinite(S) and math.isfinite(se[k])
+        if not ok:
+            rows[k] = dict(statistic=S, null_mean=0.0, null_sd=0.0, se=float(se[k]) if math.isfinite(se[k]) else None,
+                           z=0.0, p=1.0, effect_size=0.0, applicable=False)
+            continue
+        m0, s0 = float(np.mean(v)), float(np.std(v, ddof=1))
+        e = float(se[k]) if math.isfinite(se[k]) else 0.0
+        den = math.sqrt(max(s0, e) ** 2 + s0 ** 2 / v.size)
+        d = S - m0
+        z = d / den if den > 0 else (math.copysign(50.0, d) if d else 0.0)
+        z = float(np.clip(z, -50.0, 50.0))
+        p = _norm_sf(z) if k in ONE_SIDED else 2.0 * _norm_sf(abs(z))
+        rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=e, z=z, p=float(p), effect_size=d, applicable=True,
+                       interval=[d - 1.96 * den, d + 1.96 * den])
+    # Holm's step-down over the applicable candidates
+    app = sorted((r["p"], k) for k, r in rows.items() if r["applicable"])
+    m = len(app)
+    stop = False
+    for i, (p, k) in enumerate(app):
+        sig = (not stop) and p <= alpha / (m - i)
+        if not sig:
+            stop = True
+        rows[k]["significant"] = bool(sig)
+    for k, r in rows.items():
+        r.setdefault("significant", False)
+        size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])
+        r["margin"] = MARGIN[k]
+        r["named"] = bool(r["significant"] and size >= MARGIN[k])
+    return rows

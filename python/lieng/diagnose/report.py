@@ -1,0 +1,128 @@
+"""Stage 7 of ``lieng diagnose``: diagnosis.json (strict JSON), report.md
+and the plots a tribologist reads: the trace with the slips marked, the
+characteristic mu(v) from the reverse construction with both branches, the
+cycle-by-cycle residuals of the baseline, and the evidence table."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .baseline import slip_friction
+from .evidence import CANDIDATES
+from .extend import METRIC
+
+__all__ = ["write_outputs", "summary_lines", "PLOTS"]
+
+PLOTS = ("trace.png", "characteristic.png", "residuals.png")
+
+
+def summary_lines(d, source: str) -> list:
+    """The terminal summary (also the head of report.md)."""
+    out = [f"{source}: effect {d.effect}" + (f"; gain {d.gain:.2f} (90 % interval {d.gain_interval[0]:.2f} to "
+                                              f"{d.gain_interval[1]:.2f})" if d.effect not in ("none", "no_stick_slip")
+                                              else "")]
+    out.append(f"  {d.reason}")
+    out.append(f"  natural frequency {d.fn:.4g} Hz ({d.fn_source}); {d.n_cycles} cycles; drop D = {d.drop:.4g} mm")
+    for w in d.warnings:
+        out.append(f"  warning: {w}")
+    for n in d.notes:
+        out.append(f"  note: {n}")
+    return out
+
+
+def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
+    """Write diagnosis.json, report.md and (with ``plots``) the PNGs into
+    ``outdir`` (a staged directory).  Returns the file names written."""
+    out = Path(outdir)
+    js = json.dumps(d.to_json(), indent=2, allow_nan=False)
+    (out / "diagnosis.json").write_text(js + "\n", encoding="utf-8")
+    written = ["diagnosis.json", "report.md"]
+    lines = [f"# lieng diagnose: {source}", "", *[f"    {s}" for s in summary_lines(d, source)], ""]
+    if d.evidence:
+        lines += ["## Evidence", "",
+                  "Each statistic against its distribution under the fitted baseline (parametric bootstrap, "
+                  f"{d.n_replicates} replicates; fn drawn within its uncertainty); p one-sided for effects with a "
+                  "direction; Holm over the candidates at family-wise 0.05; named = significant and at least the "
+                  "relevance margin.", "",
+                  "| candidate | statistic | null mean | null sd | record se | effect size | z | p | margin | named |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        for k in CANDIDATES:
+            r = d.evidence.get(k)
+            if not r or not r.get("applicable"):
+                lines.append(f"| {k} | not applicable to this record | | | | | | | | |")
+                continue
+            lines.append(f"| {k} | {r['statistic']:.4g} | {r['null_mean']:.4g} | {r['null_sd']:.3g} | "
+                         f"{(r['se'] or 0):.3g} | {r['effect_size']:+.4g} | {r['z']:.2f} | {r['p']:.2g} | "
+                         f"{r['margin']} | {'**yes**' if r['named'] else 'no'} |")
+        lines.append("")
+    if d.effects:
+        lines += ["## Named effects and gains", "", f"Metric: {METRIC}.", "",
+                  "| effect | size | 95 % interval | p | gain | 90 % interval |", "|---|---|---|---|---|---|"]
+        for e in d.effects:
+            iv = e.get("interval_95") or [math.nan, math.nan]
+            gi = e.get("gain_interval_90") or [math.nan, math.nan]
+            lines.append(f"| {e['effect']} | {e['effect_size']:+.4g} | {iv[0]:+.3g} to {iv[1]:+.3g} | {e['p']:.2g} | "
+                         f"{e['gain']:.3f} | {gi[0]:.2f} to {gi[1]:.2f} |")
+        lines.append("")
+    if d.baseline is not None:
+        b = d.baseline
+        lines += ["## Baseline (the thesis's 1-DoF model, fitted on the training part)", "",
+                  f"* static limit FS = {b.fs:.5g} mm; relative velocity in stick c0 = {b.creep0:.3g} of the drive",
+                  "* characteristic phi(s) (sliding velocity mm/s: friction/stiffness mm): " +
+                  ", ".join(f"{s:.3g}: {f:.4g}" for s, f in zip(b.sg, b.fg)), ""]
+    if plots and d.plot:
+        _plots(d, out, source)
+        written += list(PLOTS)
+        lines += ["Plots: " + ", ".join(PLOTS) + ".", ""]
+    (out / "report.md").write_text("\n".join(lines), encoding="utf-8")
+    return written
+
+
+def _plots(d, out: Path, source: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..graf import finish
+
+    pr, c, fn = d.plot["pr"], d.plot["c"], d.plot["fn"]
+    cap = f"lieng diagnose {Path(source).name}: effect {d.effect}"
+    t, x = pr.t, pr.x
+    fig, ax = plt.subplots(figsize=(10, 4.8), dpi=120)
+    ax.plot(t, x, color="k", lw=0.7, label="record")
+    if d.plot.get("x_base") is not None:
+        ax.plot(t, d.plot["x_base"], color="C0", lw=0.7, label="baseline (thesis 1-DoF)")
+    if d.effect not in ("none", "no_stick_slip") and d.plot.get("x_ext") is not None:
+        ax.plot(t, d.plot["x_ext"], color="C3", lw=0.7, label=f"extended ({d.effect})")
+    ax.plot(t[c.peak_i], x[c.peak_i], "v", color="C1", ms=4, label="slip starts (peaks)")
+    ax.axvline(d.plot["tsplit"], color="0.5", ls="--", lw=0.8)
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel("spring extension x = friction / stiffness (mm)")
+    ax.set_title("Trace: record and models (dashed: start of the held-out part)")
+    finish(fig, ax, cap, out / "trace.png")
+
+    fig, ax = plt.subplots(figsize=(8, 5.6), dpi=120)
+    idx, s, F, br, sid = slip_friction(pr, c, fn)
+    ax.plot(s[br < 0], F[br < 0], ".", ms=2, color="C0", label="accelerating half of the slips")
+    ax.plot(s[br > 0], F[br > 0], ".", ms=2, color="C3", label="decelerating half of the slips")
+    if d.baseline is not None:
+        ax.plot(d.baseline.sg, d.baseline.fg, "-", color="k", lw=1.5, label="baseline characteristic phi(s)")
+    ax.set_xlabel("sliding velocity s = v0 - x' (mm/s)")
+    ax.set_ylabel("friction / stiffness F = x + x''/wn^2 (mm)")
+    ax.set_title("Characteristic during slip (reverse construction), both branches")
+    finish(fig, ax, cap, out / "characteristic.png")
+
+    fig, ax = plt.subplots(figsize=(9, 4.8), dpi=120)
+    ax.plot(t[c.peak_i], x[c.peak_i], "o", ms=3, color="C1", label="record: peak")
+    ax.plot(t[c.trough_i], x[c.trough_i], "o", ms=3, color="C2", label="record: trough")
+    if d.baseline is not None:
+        ax.axhline(d.baseline.fs, color="C1", lw=0.8, ls="--", label="baseline static limit FS")
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel("x (mm)")
+    ax.set_title("Cycle by cycle: peaks and troughs (what a constant model must hold level)")
+    finish(fig, ax, cap, out / "residuals.png")
