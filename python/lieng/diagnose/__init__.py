@@ -19,9 +19,9 @@ import numpy as np
 
 from ..errors import LiengInputError
 from .baseline import Params, fit_baseline, simulate
-from .decide import ALPHA, decide, null_replicates
+from .decide import ALPHA, decide, misfit, null_replicates
 from .evidence import CANDIDATES, MARGIN, statistics, y_on_motion
-from .extend import METRIC, Judge, candidates, gain, split
+from .extend import METRIC, Judge, candidates, gain, split, subset
 from .read import Record, read_record, record_from_arrays, record_from_trc_deck
 from .segment import Cycles, estimate_fn, find_cycles, prepare
 
@@ -105,14 +105,6 @@ class Diagnosis:
         return _finite(d)
 
 
-def _subset(c: Cycles, sel) -> Cycles:
-    k = np.flatnonzero(sel)
-    nxt = c.next_ok[k] & np.r_[sel[k[:-1] + 1] if k.size else np.array([], bool), False][:k.size] \
-        if k.size else c.next_ok[k]
-    return Cycles(peak_i=c.peak_i[k], trough_i=c.trough_i[k], stroke=c.stroke[k], next_ok=nxt, v=c.v, a=c.a,
-                  win=c.win)
-
-
 def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budget: float = 25.0,
              progress=None) -> Diagnosis:
     """Diagnose a record (see the package docstring and the stage modules).
@@ -168,6 +160,15 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
             warnings.append(f"the slips say fn = {fd:.4g} Hz (+- {fse or 0:.2g}), {100 * (fd / fn - 1):+.0f} % from "
                             f"--fn {fn:g}: check --fn (the slip-shape evidence assumes it within "
                             f"{100 * FN_UNCERTAINTY:.0f} %)")
+    # the slip-shape evidence (twin, load) reads the slips as arcs of a free
+    # oscillation at fn: withheld when they are not (heavily damped or
+    # rate-dependent slips, or an fn far off)
+    withheld = {}
+    if nsl >= 3 and (fd is None or abs(fd / fn_used - 1.0) > 0.25):
+        why = ("the slips are not arcs of a free oscillation at any frequency near fn" if fd is None else
+               f"the slips swing at {fd:.4g} Hz, not near fn = {fn_used:.4g} Hz")
+        withheld = {"twin_branch": why, "load_variation": why}
+        warnings.append(why + ": the slip-shape evidence (twin_branch, load_variation) is withheld")
     if 1.0 / (fn_used * pr.dt) < 15:
         warnings.append(f"{1.0 / (fn_used * pr.dt):.1f} samples per natural period: the slip-shape evidence is "
                         f"weak below about 20")
@@ -181,14 +182,14 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
         base_all.y_c = y_on_motion(pr.x, c.v, pr.y)
     st, se, aux = statistics(pr, c, fn_used, y_is_force=rec.y_is_force)
     null, nrep = null_replicates(pr, base_all, fn_used, u_fn, B=replicates, budget=budget, progress=progress)
-    rows = decide(st, se, null)
+    rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld)
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
 
     # fit on the training part, judge on the rest
     tsplit = split(pr, c)
     sel_tr = pr.t[c.peak_i] < tsplit
-    ctr = _subset(c, sel_tr)
+    ctr = subset(c, sel_tr)
     base = fit_baseline(pr, ctr, fn_used) if ctr.n >= 3 else base_all
     base.y_c = base_all.y_c
     train = Judge(pr, c, fn_used, float(pr.t[0]), tsplit, aux.get("ylow"))
@@ -213,6 +214,11 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
         effect = named[0]
         reason = "; ".join(f"{k}: size {rows[k]['effect_size']:+.3g} (margin {MARGIN[k]}), p = {rows[k]['p']:.2g}"
                            for k in named) + f" (Holm, family-wise {ALPHA})"
+    elif misfit(aux["gof"], null):
+        effect = "unexplained"
+        reason = ("the baseline misses beyond its noise and no candidate accounts for it: " +
+                  "; ".join(f"{k} {v:.3g} in the record against {m:.3g} in the baseline's replicates"
+                            for k, v, m in misfit(aux["gof"], null)))
     else:
         effect = "none"
         best = min((k for k in CANDIDATES if rows[k]["applicable"]), key=lambda k: rows[k]["p"], default=None)
@@ -220,6 +226,10 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                   "within its noise" + (f" (smallest p: {best}, {rows[best]['p']:.2g})" if best else ""))
     if nrep < 10:
         warnings.append(f"only {nrep} baseline replicates could be analysed: the calibration is coarse")
+    rows["goodness_of_fit"] = {k: {"record": aux["gof"][k],
+                                   "replicates_mean": float(np.mean(null[k])) if null[k].size else None,
+                                   "replicates_sd": float(np.std(null[k])) if null[k].size > 1 else None}
+                               for k in aux["gof"]}
     return Diagnosis(effect=effect, reason=reason, effects=effects, evidence=_finite(rows), fn=fn_used, fn_source=src,
                      fn_data=fd, fn_data_se=fse, baseline=base, extended=primary_ext,
                      baseline_error=g0["e0"], extended_error=g0["e1"], gain=g0["gain"] if named else 0.0,

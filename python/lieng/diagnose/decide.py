@@ -28,11 +28,11 @@ import numpy as np
 
 from ..errors import LiengInputError
 from .baseline import Params, pr_like, simulate
-from .evidence import CANDIDATES, MARGIN, ONE_SIDED, statistics, y_on_motion
+from .evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, statistics
 from .read import noise_level
 from .segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "null_replicates", "decide"]
+__all__ = ["ALPHA", "null_replicates", "decide", "misfit"]
 
 #: family-wise false-alarm rate
 ALPHA = 0.05
@@ -40,6 +40,19 @@ ALPHA = 0.05
 
 def _norm_sf(z):
     return 0.5 * math.erfc(z / math.sqrt(2.0))
+
+
+def _norm_ppf(p):
+    """The standard normal quantile (bisection on erfc; p in (0, 1))."""
+    p = min(max(p, 1e-300), 1 - 1e-16)
+    lo, hi = -40.0, 40.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if 1.0 - _norm_sf(mid) < p:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
 
 
 def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int = 39, budget: float = 25.0,
@@ -52,7 +65,7 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
     sx = noise_level(pr.x)
     y = pr.y
     sy = noise_level(y) if y is not None else 0.0
-    vals = {k: [] for k in CANDIDATES}
+    vals = {k: [] for k in (*CANDIDATES, *GOF)}
     t0 = time.perf_counter()
     done = 0
     for b in range(B):
@@ -67,10 +80,11 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
             c = find_cycles(q, fn)
             if c.n < 3:
                 continue
-            st, _, _ = statistics(q, c, fn, y=yb)
+            st, _, aux = statistics(q, c, fn, y=yb)
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             continue
-        for k in CANDIDATES:
+        st.update(aux["gof"])
+        for k in vals:
             vals[k].append(st[k])
         done += 1
         if progress:
@@ -81,11 +95,28 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
     return {k: np.asarray(v, float) for k, v in vals.items()}, done
 
 
-def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None) -> dict:
+def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
+           withheld=None) -> dict:
     """The evidence table: for every candidate the statistic, the null mean
-    and spread, z, p, Holm's decision and whether it is named."""
+    and spread, z, p, Holm's decision and whether it is named.
+
+    ``p_own`` gives p-values calibrated within the record (a permutation
+    test) for some candidates: their effect size is the statistic itself.
+    ``withheld`` maps candidates to the reason their evidence is not read."""
     rows = {}
+    p_own = p_own or {}
+    withheld = withheld or {}
     for k in CANDIDATES:
+        if k in withheld:
+            rows[k] = dict(statistic=float(st[k]), null_mean=0.0, null_sd=0.0, se=None, z=0.0, p=1.0,
+                           effect_size=0.0, applicable=False, withheld=withheld[k])
+            continue
+        if k in p_own and math.isfinite(st[k]):
+            p = float(p_own[k])
+            z = float(np.clip(-_norm_ppf(p), -50.0, 50.0))
+            rows[k] = dict(statistic=float(st[k]), null_mean=0.0, null_sd=0.0, se=None, z=z, p=p,
+                           effect_size=float(st[k]), applicable=True, calibration="permutation within the record")
+            continue
         v = null.get(k, np.array([]))
         v = v[np.isfinite(v)]
         S = float(st[k])
@@ -118,3 +149,22 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         r["margin"] = MARGIN[k]
         r["named"] = bool(r["significant"] and size >= MARGIN[k])
     return rows
+
+
+def misfit(gof: dict, null: dict) -> list:
+    """The goodness-of-fit features in which the record departs from the
+    baseline's replicates beyond their spread (|z| > 3.5, about 0.05 over
+    the three at once) and by more than GOF_MARGIN: [(name, record value,
+    replicates' mean)]."""
+    out = []
+    for k in GOF:
+        v = null.get(k, np.array([]))
+        v = v[np.isfinite(v)]
+        if v.size < 5:
+            continue
+        m0, s0 = float(np.mean(v)), float(np.std(v, ddof=1))
+        d = gof[k] - m0
+        rel = abs(d) / max(abs(m0), 1e-12) if k == "slip_duration" else abs(d)
+        if abs(d) > 3.5 * max(s0, 1e-12) and rel > GOF_MARGIN[k]:
+            out.append((k, float(gof[k]), m0))
+    return out

@@ -29,8 +29,12 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     in x): its amplitude over the mean normal force (a force channel: the
     load modulation), or over D.
 ``drive_modulation``
-    The coefficient of variation over the sticks of the stick velocity
-    (a line fitted to x in each stick's middle) over the drive.
+    The stick velocity (a line fitted to x in each stick's middle) over the
+    drive, stick by stick: the relative amplitude of the sinusoid that
+    explains most of its variance (frequencies from two cycles per record
+    to half the stick rate); calibrated within the record by a permutation
+    test (under a constant drive the sticks are exchangeable), so scatter
+    without a period is not a modulation.
 ``friction_drift``
     The trend of the friction level (mean of peak and trough per cycle)
     with time, over the record, over D (two-sided).
@@ -77,11 +81,13 @@ def lowpass(y, dt, fcut):
 
 
 def _jackknife(values_fn, n_units, groups=10):
-    """Jackknife standard error of values_fn(mask of units kept)."""
+    """Jackknife standard error of values_fn(mask of units kept), leaving out
+    contiguous blocks of units (slips or cycles in time order), so that a
+    scatter correlated from cycle to cycle (a real rig's wander) widens it."""
     g = min(groups, n_units)
     if g < 3:
         return math.inf
-    parts = np.array_split(np.random.default_rng(0).permutation(n_units), g)
+    parts = np.array_split(np.arange(n_units), g)
     est = []
     for part in parts:
         keep = np.ones(n_units, bool)
@@ -228,12 +234,67 @@ def _stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875)):
     return np.asarray(out)
 
 
-def _drive(pr: Prepared, c: Cycles):
-    r = _stick_ratios(pr, c)
-    if r.size < 4 or not abs(np.mean(r)) > 0:
-        return 0.0, math.inf
-    est = lambda keep: float(np.std(r[keep]) / abs(np.mean(r[keep])))
-    return est(np.ones(r.size, bool)), _jackknife(est, r.size)
+def _stick_series(pr: Prepared, c: Cycles):
+    """Per stick: the time of its middle and the stick velocity over the drive."""
+    tt, rr = [], []
+    for k in np.flatnonzero(c.next_ok):
+        lo, hi = c.trough_i[k], c.peak_i[k + 1]
+        m = hi - lo
+        seg = np.arange(lo + m // 4, hi - m // 8)
+        if seg.size < 5:
+            continue
+        vd = float(np.mean(pr.vd[seg]))
+        if vd <= 0:
+            continue
+        tt.append(float(np.mean(pr.t[seg])))
+        rr.append(np.polyfit(pr.t[seg], pr.x[seg], 1)[0] / vd)
+    return np.asarray(tt), np.asarray(rr)
+
+
+def drive_scan(t, r, fmin, fmax, nperm=199, seed=0):
+    """A periodic modulation of the stick velocity: the largest fraction of
+    the series' variance a sinusoid explains over a frequency grid, its
+    frequency and relative amplitude, and the permutation p-value of that
+    maximum (the sticks' order shuffled: under a constant drive the stick
+    velocities are exchangeable)."""
+    n = r.size
+    if n < 8 or not np.std(r) > 0 or not fmax > fmin > 0:
+        return 0.0, 0.0, 0.0, 1.0
+    span = float(t[-1] - t[0])
+    nf = int(np.clip(4 * span * fmax, 50, 600))
+    freqs = np.geomspace(fmin, fmax, nf)
+    rng = np.random.default_rng(seed)
+    R = np.column_stack([r] + [rng.permutation(r) for _ in range(nperm)])
+    R = R - R.mean(axis=0)
+    tot = np.sum(R * R, axis=0)
+    best = np.zeros(R.shape[1])
+    arg = 0
+    for j, f in enumerate(freqs):
+        B = np.column_stack([np.ones(n), np.sin(2 * math.pi * f * t), np.cos(2 * math.pi * f * t)])
+        Q, _ = np.linalg.qr(B)
+        P = Q[:, 1:].T @ R
+        frac = np.sum(P * P, axis=0) / tot
+        if frac[0] > best[0]:
+            arg = j
+        best = np.maximum(best, frac)
+    f = float(freqs[arg])
+    B = np.column_stack([np.ones(n), np.sin(2 * math.pi * f * t), np.cos(2 * math.pi * f * t)])
+    co = np.linalg.lstsq(B, r, rcond=None)[0]
+    amp = float(math.hypot(co[1], co[2]) / abs(co[0])) if co[0] else 0.0
+    p = float((1 + np.count_nonzero(best[1:] >= best[0])) / (nperm + 1))
+    return float(best[0]), f, amp, p
+
+
+def _drive(pr: Prepared, c: Cycles, fn: float):
+    t, r = _stick_series(pr, c)
+    per = c.periods(pr.t)
+    if r.size < 8 or per.size < 2:
+        return 0.0, math.inf, 1.0, 0.0
+    f_ss = 1.0 / float(np.median(per))
+    span = float(t[-1] - t[0])
+    # from two cycles of the modulation in the record to half the stick rate (Nyquist of the stick sampling)
+    frac, f, amp, p = drive_scan(t, r, max(2.0 / span, 0.02 * f_ss), 0.5 * f_ss)
+    return amp, 0.0, p, f
 
 
 def _creep(pr: Prepared, c: Cycles):
@@ -275,6 +336,24 @@ def _asymmetry(pr: Prepared, c: Cycles):
     return est(np.ones(pk.size, bool)), _jackknife(est, pk.size)
 
 
+#: goodness-of-fit features of the baseline (not effects): the slip's duration
+#: in half natural periods, the spread of the peaks over D, the spread of the
+#: periods over their mean; a record that departs from the baseline's
+#: replicates in one of them by more than GOF_MARGIN, with no candidate named,
+#: is ``unexplained``
+GOF = ("slip_duration", "peak_spread", "period_spread")
+GOF_MARGIN = {"slip_duration": 0.25, "peak_spread": 0.10, "period_spread": 0.10}
+
+
+def goodness(pr: Prepared, c: Cycles, fn: float, D: float) -> dict:
+    """The goodness-of-fit features (see :data:`GOF`)."""
+    dur = pr.t[c.trough_i] - pr.t[c.peak_i]
+    per = c.periods(pr.t)
+    return {"slip_duration": float(np.median(dur) * 2.0 * fn) if dur.size else 0.0,
+            "peak_spread": float(np.std(pr.x[c.peak_i]) / D) if c.n > 1 else 0.0,
+            "period_spread": float(np.std(per) / np.mean(per)) if per.size > 1 else 0.0}
+
+
 def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> tuple[dict, dict, dict]:
     """Every candidate's effect size and its standard error from the record's
     own scatter, and auxiliary values (D, the triggering line's frequency,
@@ -292,11 +371,14 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> 
     st["static_ageing"], se["static_ageing"] = v / D, e / D
     v, e, f_tr = _triggering(pr, c, fn, y, y_is_force, D)
     st["triggering"], se["triggering"] = v, e
-    st["drive_modulation"], se["drive_modulation"] = _drive(pr, c)
+    v, e, p_drv, f_drv = _drive(pr, c, fn)
+    st["drive_modulation"], se["drive_modulation"] = v, e
     v, e = _drift(pr, c)
     st["friction_drift"], se["friction_drift"] = v / D, e / D
     v, e = _asymmetry(pr, c)
     st["direction_asymmetry"], se["direction_asymmetry"] = v / D, e / D
     st["creep"], se["creep"] = _creep(pr, c)
-    aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "log_stick_range": lrange, "y_span": yspan}
+    aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
+           # statistics calibrated within the record (a permutation test), not by the baseline's replicates
+           "p_own": {"drive_modulation": p_drv}, "gof": goodness(pr, c, fn, D)}
     return st, se, aux

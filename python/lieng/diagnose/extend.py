@@ -30,7 +30,7 @@ import numpy as np
 
 from ..errors import LiengInputError
 from .baseline import Params, fit_baseline, model_y, pr_like, simulate, slip_friction
-from .evidence import lowpass, statistics
+from .evidence import _stick_series, drive_scan, lowpass
 from .segment import Cycles, Prepared, find_cycles
 
 __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
@@ -40,6 +40,20 @@ METRIC = ("RMS of normalised differences on the held-out cycles: mean and spread
           "period and rise time (/ mean period); mean slip waveform at 9 instants over 0.6 natural periods (/ D); "
           "with a normal channel, the RMS of y less the simulated y (/ spread of y)")
 NWAVE = 9
+
+
+def subset(c: Cycles, sel) -> Cycles:
+    """The cycles whose mask ``sel`` is true (a cycle keeps its successor
+    only when that is kept too)."""
+    k = np.flatnonzero(sel)
+    nxt = c.next_ok[k].copy()
+    if k.size:
+        nxt &= np.r_[np.diff(k) == 1, False]
+    return Cycles(peak_i=c.peak_i[k], trough_i=c.trough_i[k], stroke=c.stroke[k], next_ok=nxt, v=c.v, a=c.a,
+                  win=c.win)
+
+
+_subset = subset
 
 
 def split(pr: Prepared, c: Cycles) -> float:
@@ -228,28 +242,14 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             for sc in (0.0, 0.5, 1.0):
                 out.append(lvl(base.copy(trig_eps=sc * eps, trig_ph=ph, **kw)))
     elif effect == "drive_modulation":
-        segs = []
-        for k in np.flatnonzero(c.next_ok & ctr_sel):
-            lo, hi = c.trough_i[k], c.peak_i[k + 1]
-            n = hi - lo
-            seg = np.arange(lo + n // 4, hi - n // 8)
-            if seg.size >= 5:
-                segs.append(seg)
-        if len(segs) >= 4:
-            idx = np.concatenate(segs)
-            ts, rat = pr.t[idx], c.v[idx] / pr.vd[idx]
-            per = c.periods(pr.t)
-            f_ss = 1.0 / float(np.mean(per))
+        ts, r = _stick_series(pr, _subset(c, ctr_sel))
+        per = c.periods(pr.t)
+        if r.size >= 8 and per.size >= 2:
+            f_ss = 1.0 / float(np.median(per))
             span = float(ts[-1] - ts[0])
-            nf = int(min(3000, max(300, 4 * span * 0.5 * fn)))
-            best = None
-            for f in np.geomspace(0.05 * f_ss, 0.5 * fn, nf):
-                A = np.column_stack([np.ones(ts.size), np.sin(2 * math.pi * f * ts), np.cos(2 * math.pi * f * ts)])
-                co, res, _, _ = np.linalg.lstsq(A, rat, rcond=None)
-                r = float(np.sum((A @ co - rat) ** 2))
-                if best is None or r < best[0]:
-                    best = (r, f, co)
-            _, f, co = best
+            _, f, _, _ = drive_scan(ts, r, max(2.0 / span, 0.02 * f_ss), 0.5 * f_ss, nperm=0)
+            B = np.column_stack([np.ones(ts.size), np.sin(2 * math.pi * f * ts), np.cos(2 * math.pi * f * ts)])
+            co = np.linalg.lstsq(B, r, rcond=None)[0]
             for sc in (0.8, 1.0, 1.2):
                 out.append(lvl(base.copy(drv_f=float(f), drv_a=sc * float(math.hypot(co[1], co[2]) / co[0]),
                                          drv_ph=float(math.atan2(co[2], co[1])))))
