@@ -20,7 +20,7 @@ import numpy as np
 from ..errors import LiengInputError
 from .baseline import Params, fit_baseline, simulate
 from .decide import ALPHA, decide, misfit, null_replicates
-from .evidence import CANDIDATES, MARGIN, statistics, y_on_motion
+from .evidence import CANDIDATES, MARGIN, SLIDING, sliding_statistics, statistics, y_on_motion
 from .extend import METRIC, Judge, candidates, gain, split, subset
 from .read import Record, read_record, record_from_arrays, record_from_trc_deck
 from .segment import Cycles, estimate_fn, find_cycles, prepare
@@ -105,6 +105,37 @@ class Diagnosis:
         return _finite(d)
 
 
+def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=None) -> Diagnosis:
+    """A record without stick-slip: what steady sliding shows, stroke by
+    stroke (direction asymmetry and drift tested within the record: block
+    jackknife, Holm)."""
+    st, se, aux = sliding_statistics(pr)
+    rows = decide(st, se, {k: np.zeros(10) for k in CANDIDATES}, applicable=SLIDING)
+    named = [k for k in SLIDING if rows[k]["named"]]
+    effects = [_finite({"effect": k, "effect_size": rows[k]["effect_size"], "interval_95": rows[k].get("interval"),
+                        "p": rows[k]["p"], "z": rows[k]["z"], "gain": 0.0, "gain_interval_90": [0.0, 0.0],
+                        "extension": "none (no stick-slip to simulate)"}) for k in named]
+    reason = (f"{c_n} stick-slip cycles found: the record does not show stick-slip (no drop faster than the rise "
+              f"before it)")
+    if aux["levels"].size >= 4:
+        tr = aux["travel"][np.isfinite(aux["travel"])]
+        rs = aux["ramp_slope"][np.isfinite(aux["ramp_slope"])]
+        reason += (f"; steady sliding over {aux['levels'].size} strokes at a level of {aux['level']:.4g} mm "
+                   f"(friction over stiffness)")
+        if tr.size:
+            reason += (f"; after each reversal x reaches 90 % of that level after {np.median(tr):.3g} mm of drive "
+                       f"travel (ramp slope {np.median(rs):.3g} mm of x per mm of travel: 1 would be a rigid "
+                       f"stick behind the given spring)")
+        if named:
+            reason += "; " + "; ".join(f"{k}: {rows[k]['effect_size']:+.3g} of the level, p = {rows[k]['p']:.2g}"
+                                       for k in named)
+    rows["sliding"] = {"levels_mm": aux["levels"].tolist(), "stroke_sign": aux["sign"].tolist(),
+                       "presliding_travel_mm": aux["travel"].tolist(), "ramp_slope": aux["ramp_slope"].tolist()}
+    return Diagnosis(effect="no_stick_slip", reason=reason, effects=effects, evidence=_finite(rows),
+                     fn=fn or 0.0, fn_source=src, fn_data=fd, fn_data_se=fse, notes=notes, warnings=warnings,
+                     n_cycles=c_n)
+
+
 def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budget: float = 25.0,
              progress=None) -> Diagnosis:
     """Diagnose a record (see the package docstring and the stage modules).
@@ -142,9 +173,7 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     if fn is None:
         if fd is None:
             if c0.n < 4:
-                return Diagnosis(effect="no_stick_slip", reason=f"{c0.n} stick-slip cycles found: the record does "
-                                 f"not show stick-slip (no drop faster than the rise before it)", notes=notes,
-                                 n_cycles=c0.n)
+                return _no_stick_slip(pr, c0.n, notes, warnings)
             raise LiengInputError(f"{rec.source}: the natural frequency cannot be fixed from the slips "
                                   f"({nsl} usable): give --fn (Hz)")
         fn_used, src = fd, "estimated from the slips"
@@ -174,9 +203,7 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                         f"weak below about 20")
     c = find_cycles(pr, fn_used)
     if c.n < 4:
-        return Diagnosis(effect="no_stick_slip", reason=f"{c.n} stick-slip cycles found: the record does not show "
-                         f"stick-slip (no drop faster than the rise before it)", fn=fn_used, fn_source=src,
-                         fn_data=fd, fn_data_se=fse, notes=notes, warnings=warnings, n_cycles=c.n)
+        return _no_stick_slip(pr, c.n, notes, warnings, fn_used, src, fd, fse)
     base_all = fit_baseline(pr, c, fn_used)
     if pr.y is not None:
         base_all.y_c = y_on_motion(pr.x, c.v, pr.y)

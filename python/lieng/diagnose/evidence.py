@@ -382,3 +382,52 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> 
            # statistics calibrated within the record (a permutation test), not by the baseline's replicates
            "p_own": {"drive_modulation": p_drv}, "gof": goodness(pr, c, fn, D)}
     return st, se, aux
+
+
+#: the candidates read on a record without stick-slip (steady sliding)
+SLIDING = ("direction_asymmetry", "friction_drift")
+
+
+def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
+    """Steady sliding, stroke by stroke (a record without stick-slip): the
+    sliding level of each stroke (median x over its second half), the travel
+    of the drive from the stroke's start until x has gone 90 % of the way to
+    that level (the presliding ramp) and the ramp's slope in x per mm of
+    travel (1 for a rigid stick behind the given spring); across strokes the
+    direction asymmetry and the drift of the level, each over the mean
+    level, with block-jackknife errors over the strokes in time order."""
+    lv, trav, slope, sign, tmid = [], [], [], [], []
+    for s in pr.strokes:
+        sl = slice(s.j0, s.j0 + s.n)
+        x, vd, t = pr.x[sl], pr.vd[sl], pr.t[sl]
+        if x.size < 20:
+            continue
+        P = float(np.median(x[x.size // 2:]))
+        x0 = float(np.median(x[:3]))
+        travel = np.concatenate([[0.0], np.cumsum(0.5 * (vd[1:] + vd[:-1]) * np.diff(t))])
+        k90 = np.flatnonzero((x - x0) >= 0.9 * (P - x0)) if P > x0 else np.array([], int)
+        L = float(travel[k90[0]]) if k90.size else math.nan
+        lv.append(P)
+        trav.append(L)
+        slope.append(0.9 * (P - x0) / L if L and L > 0 else math.nan)
+        sign.append(s.sign)
+        tmid.append(float(np.mean(t)))
+    lv, trav, slope, sign, tmid = map(np.asarray, (lv, trav, slope, sign, tmid))
+    st, se = {k: 0.0 for k in CANDIDATES}, {k: math.inf for k in CANDIDATES}
+    mean = float(np.mean(lv)) if lv.size else 0.0
+    aux = {"levels": lv, "travel": trav, "ramp_slope": slope, "sign": sign, "t": tmid, "level": mean}
+    if lv.size < 4 or not mean > 0:
+        return st, se, aux
+    fw, bw = sign > 0, sign < 0
+    if np.count_nonzero(fw) >= 2 and np.count_nonzero(bw) >= 2:
+        est = lambda keep: float((np.median(lv[keep & fw]) - np.median(lv[keep & bw])) / mean) \
+            if np.any(keep & fw) and np.any(keep & bw) else np.nan
+        st["direction_asymmetry"], se["direction_asymmetry"] = est(np.ones(lv.size, bool)), _jackknife(est, lv.size)
+    # the drift: the trend of the level less each direction's mean, over the record
+    res = lv - np.where(fw, np.mean(lv[fw]) if np.any(fw) else 0.0, np.mean(lv[bw]) if np.any(bw) else 0.0)
+    span = float(tmid.max() - tmid.min())
+    if span > 0:
+        est = lambda keep: float(np.polyfit(tmid[keep], res[keep], 1)[0] * span / mean) \
+            if np.count_nonzero(keep) > 3 else np.nan
+        st["friction_drift"], se["friction_drift"] = est(np.ones(lv.size, bool)), _jackknife(est, lv.size)
+    return st, se, aux

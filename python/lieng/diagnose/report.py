@@ -26,7 +26,8 @@ def summary_lines(d, source: str) -> list:
                                               f"{d.gain_interval[1]:.2f})" if d.effect not in ("none", "no_stick_slip")
                                               else "")]
     out.append(f"  {d.reason}")
-    out.append(f"  natural frequency {d.fn:.4g} Hz ({d.fn_source}); {d.n_cycles} cycles; drop D = {d.drop:.4g} mm")
+    if d.effect != "no_stick_slip":
+        out.append(f"  natural frequency {d.fn:.4g} Hz ({d.fn_source}); {d.n_cycles} cycles; drop D = {d.drop:.4g} mm")
     for w in d.warnings:
         out.append(f"  warning: {w}")
     for n in d.notes:
@@ -74,7 +75,7 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
                   f"* static limit FS = {b.fs:.5g} mm; relative velocity in stick c0 = {b.creep0:.3g} of the drive",
                   "* characteristic phi(s) (sliding velocity mm/s: friction/stiffness mm): " +
                   ", ".join(f"{s:.3g}: {f:.4g}" for s, f in zip(b.sg, b.fg)), ""]
-    if plots and d.plot:
+    if plots and d.plot and d.plot.get("pr") is not None:
         _plots(d, out, source)
         written += list(PLOTS)
         lines += ["Plots: " + ", ".join(PLOTS) + ".", ""]
