@@ -11,7 +11,7 @@ STAMP  := $(VENV)/.lieng-installed
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SOURCES := pyproject.toml meson.build $(wildcard fortran/*.f90) fortran/f2py_f2cmap $(wildcard python/lieng/*.py python/lieng/*.md python/lieng/*/*.py)
 
-.PHONY: all demo test bench gfortran venv install clean distclean
+.PHONY: all demo test bench bench-diagnose gfortran venv install clean distclean
 
 all: install
 
@@ -51,6 +51,10 @@ bench: install
 	$(VPY) tests/benchmarks/bench_trc.py
 	$(VPY) tests/benchmarks/bench_sweep.py
 	$(VPY) tests/benchmarks/bench_twodof.py
+	$(VPY) tests/benchmarks/bench_diagnose_scale.py
+
+bench-diagnose: install
+	$(VPY) tests/benchmarks/bench_diagnose.py --seeds 8
 
 clean:
 	rm -rf build out .pytest_cache

@@ -10,7 +10,15 @@ Card decks: :func:`read_deck`, :func:`write_deck`.  Bad input raises
 :class:`LiengInputError` with a one-line message naming the card and columns.
 """
 
-from .cards import read_deck, write_deck
+import os as _os
+
+# One BLAS thread: the analyses are many small solves, and a machine's other
+# cores belong to the process pool or to other jobs (set the variables before
+# importing lieng to choose otherwise).
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    _os.environ.setdefault(_var, "1")
+
+from .cards import read_deck, write_deck  # noqa: E402
 from .characteristic import centre_of_symmetry
 from .errors import LiengInputError
 from .lieng1 import Lieng1Result, lieng1
