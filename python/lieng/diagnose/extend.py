@@ -15,8 +15,9 @@ cycles of
   rise time (over the mean period);
 * the mean slip waveform: x from each peak at 9 instants over 0.6 natural
   periods, less the peak, over D;
-* with a normal channel: the RMS of the record's y less the simulated y
-  (time domain) over y's spread.
+* with a normal channel: the RMS difference, in time, between the parts of
+  the record's and the model's y that are not locked to the motion (each
+  less the baseline's regression of y on x and x'), over y's spread.
 
 gain = 1 - e_extended / e_baseline, with a 90 % interval from resampling the
 held-out cycles; always finite.
@@ -38,7 +39,7 @@ __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles: mean and spread of peak and trough (/ drop D), "
           "period and rise time (/ mean period); mean slip waveform at 9 instants over 0.6 natural periods (/ D); "
-          "with a normal channel, the RMS of y less the simulated y (/ spread of y)")
+          "with a normal channel, the RMS difference in time of the parts of y not locked to the motion (/ spread of y)")
 NWAVE = 9
 
 
@@ -66,9 +67,10 @@ def split(pr: Prepared, c: Cycles) -> float:
 
 
 def _features(pr: Prepared, x, c: Cycles, sel, fn, D, P):
-    """The feature vector on the cycles whose peak is in ``sel`` (a boolean
-    mask over c's cycles)."""
-    k = np.flatnonzero(sel)
+    """The feature vector on the cycles ``sel``: a boolean mask over c's
+    cycles, or an index array (repeats allowed: a bootstrap sample)."""
+    sel = np.asarray(sel)
+    k = np.flatnonzero(sel) if sel.dtype == bool else sel
     if k.size < 2:
         return None
     kn = k[c.next_ok[k]]
@@ -120,8 +122,11 @@ class Judge:
             return None
         m, s = self.meas, fs
         if pr.y is not None:
-            ysim = model_y(pr, p, xs, vs)
-            ey = float(np.sqrt(np.mean((pr.y[self.mask] - ysim[self.mask]) ** 2))) / self.ysd
+            # the part of y not locked to the motion (locked to the clock: no phase drift), record against model
+            c0, c1, c2 = p.y_c
+            r_rec = pr.y - (c0 + c1 * pr.x + c2 * self.c.v)
+            r_sim = model_y(pr, p, xs, vs) - (c0 + c1 * xs + c2 * vs)
+            ey = float(np.sqrt(np.mean((r_rec[self.mask] - r_sim[self.mask]) ** 2))) / self.ysd
             m, s = np.r_[m, 0.0], np.r_[s, ey]
         return m, s, xs
 
@@ -290,10 +295,8 @@ def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: 
     gs = []
     if k.size >= 3 and ext is not base:
         for _ in range(nboot):
-            pick = rng.choice(k, k.size)
-            sel = np.zeros(c.n, bool)
-            sel[np.unique(pick)] = True
-            m = _features(pr, pr.x, c, sel, fn, J.D, J.P)
+            pick = np.sort(rng.choice(k, k.size))
+            m = _features(pr, pr.x, c, pick, fn, J.D, J.P)
             if m is None:
                 continue
             if pr.y is not None:
