@@ -43,7 +43,7 @@ def test_reciprocating_tribometer_every_stroke(tmp_path):
     # independent: strokes are runs of one sign of the stage velocity
     sgn = np.sign(v[moving])
     n_strokes = 1 + int(np.count_nonzero(np.diff(sgn) != 0))
-    assert abs(len(d["evidence"]["sliding"]["levels_mm"]) - n_strokes) <= 2
+    assert abs(len(d["sliding"]["levels_mm"]) - n_strokes) <= 2
     # independent: in the second half of every stroke the friction (5-sample
     # mean) never drops by a tenth of its level within 50 ms: no stick-slip,
     # as the report says

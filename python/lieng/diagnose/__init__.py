@@ -70,6 +70,8 @@ class Diagnosis:
     reason: str
     effects: list = field(default_factory=list)
     evidence: dict = field(default_factory=dict)
+    goodness: dict = field(default_factory=dict)
+    sliding: dict = field(default_factory=dict)
     fn: float = 0.0
     fn_source: str = ""
     fn_data: float | None = None
@@ -90,7 +92,8 @@ class Diagnosis:
     def to_json(self) -> dict:
         d = {"effect": self.effect, "reason": self.reason, "gain": self.gain, "gain_interval_90": self.gain_interval,
              "baseline_error": self.baseline_error, "extended_error": self.extended_error, "metric": METRIC,
-             "effects": self.effects, "evidence": self.evidence,
+             "effects": self.effects, "evidence": self.evidence, "goodness_of_fit": self.goodness,
+             "sliding": self.sliding,
              "calibration": {"method": "parametric bootstrap of the fitted baseline (fn drawn within its "
                                        "uncertainty, noise at the record's level); Holm over the candidates",
                              "family_wise_alpha": ALPHA, "replicates": self.n_replicates},
@@ -129,9 +132,10 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
         if named:
             reason += "; " + "; ".join(f"{k}: {rows[k]['effect_size']:+.3g} of the level, p = {rows[k]['p']:.2g}"
                                        for k in named)
-    rows["sliding"] = {"levels_mm": aux["levels"].tolist(), "stroke_sign": aux["sign"].tolist(),
-                       "presliding_travel_mm": aux["travel"].tolist(), "ramp_slope": aux["ramp_slope"].tolist()}
+    sliding = {"levels_mm": aux["levels"].tolist(), "stroke_sign": aux["sign"].tolist(),
+               "presliding_travel_mm": aux["travel"].tolist(), "ramp_slope": aux["ramp_slope"].tolist()}
     return Diagnosis(effect="no_stick_slip", reason=reason, effects=effects, evidence=_finite(rows),
+                     sliding=_finite(sliding),
                      fn=fn or 0.0, fn_source=src, fn_data=fd, fn_data_se=fse, notes=notes, warnings=warnings,
                      n_cycles=c_n)
 
@@ -163,6 +167,10 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
     warnings = []
+    span = float(rec.t[-1] - rec.t[0])
+    if fn is not None and fn * span < 4:
+        raise LiengInputError(f"--fn {fn:g} Hz: the record ({span:.4g} s) spans fewer than 4 natural periods; "
+                              f"check --fn (Hz) and the time column's unit")
     if fn is not None and fn * pr.dt > 0.2:
         raise LiengInputError(f"--fn {fn:g} Hz: the record has only {1 / (fn * pr.dt):.1f} samples per natural "
                               f"period; at least 5 are needed")
@@ -253,11 +261,12 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                   "within its noise" + (f" (smallest p: {best}, {rows[best]['p']:.2g})" if best else ""))
     if nrep < 10:
         warnings.append(f"only {nrep} baseline replicates could be analysed: the calibration is coarse")
-    rows["goodness_of_fit"] = {k: {"record": aux["gof"][k],
+    gof = {k: {"record": aux["gof"][k],
                                    "replicates_mean": float(np.mean(null[k])) if null[k].size else None,
                                    "replicates_sd": float(np.std(null[k])) if null[k].size > 1 else None}
                                for k in aux["gof"]}
-    return Diagnosis(effect=effect, reason=reason, effects=effects, evidence=_finite(rows), fn=fn_used, fn_source=src,
+    return Diagnosis(effect=effect, reason=reason, effects=effects, evidence=_finite(rows), goodness=_finite(gof),
+                     fn=fn_used, fn_source=src,
                      fn_data=fd, fn_data_se=fse, baseline=base, extended=primary_ext,
                      baseline_error=g0["e0"], extended_error=g0["e1"], gain=g0["gain"] if named else 0.0,
                      gain_interval=g0["interval"] if named else [0.0, 0.0], n_cycles=c.n, n_replicates=nrep,

@@ -32,7 +32,7 @@ import numpy as np
 
 from .. import _core
 from ..errors import LiengInputError
-from .segment import Cycles, Prepared
+from .segment import Cycles, Prepared, stick_ratios
 
 __all__ = ["Params", "simulate", "fit_baseline", "slip_friction", "model_y"]
 
@@ -220,17 +220,7 @@ def stick_creep(pr: Prepared, c: Cycles) -> float:
     minus the median over sticks of the slope of x in the stick's middle
     half over the drive there; 0 when it does not differ from 0 by more
     than its scatter."""
-    r = []
-    for k in np.flatnonzero(c.next_ok):
-        lo, hi = c.trough_i[k], c.peak_i[k + 1]
-        m = hi - lo
-        seg = np.arange(lo + m // 4, hi - m // 4)
-        if seg.size < 5:
-            continue
-        vd = float(np.mean(pr.vd[seg]))
-        if vd <= 0:
-            continue
-        r.append(np.polyfit(pr.t[seg], pr.x[seg], 1)[0] / vd)
+    r = stick_ratios(pr, c, (0.25, 0.75))[1]
     if len(r) < 3:
         return 0.0
     r = np.asarray(r)

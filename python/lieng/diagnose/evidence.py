@@ -53,7 +53,7 @@ import math
 import numpy as np
 
 from .baseline import slip_friction
-from .segment import Cycles, Prepared, slip_arcs
+from .segment import Cycles, Prepared, slip_arcs, stick_ratios
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "statistics", "lowpass"]
 
@@ -219,36 +219,9 @@ def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
     return a / scale, se / scale, f
 
 
-def _stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875)):
-    out = []
-    for k in np.flatnonzero(c.next_ok):
-        lo, hi = c.trough_i[k], c.peak_i[k + 1]
-        m = hi - lo
-        seg = np.arange(lo + int(m * part[0]), lo + int(m * part[1]))
-        if seg.size < 5:
-            continue
-        vd = float(np.mean(pr.vd[seg]))
-        if vd <= 0:
-            continue
-        out.append(np.polyfit(pr.t[seg], pr.x[seg], 1)[0] / vd)
-    return np.asarray(out)
-
-
 def _stick_series(pr: Prepared, c: Cycles):
     """Per stick: the time of its middle and the stick velocity over the drive."""
-    tt, rr = [], []
-    for k in np.flatnonzero(c.next_ok):
-        lo, hi = c.trough_i[k], c.peak_i[k + 1]
-        m = hi - lo
-        seg = np.arange(lo + m // 4, hi - m // 8)
-        if seg.size < 5:
-            continue
-        vd = float(np.mean(pr.vd[seg]))
-        if vd <= 0:
-            continue
-        tt.append(float(np.mean(pr.t[seg])))
-        rr.append(np.polyfit(pr.t[seg], pr.x[seg], 1)[0] / vd)
-    return np.asarray(tt), np.asarray(rr)
+    return stick_ratios(pr, c)
 
 
 def drive_scan(t, r, fmin, fmax, nperm=199, seed=0):
@@ -298,8 +271,8 @@ def _drive(pr: Prepared, c: Cycles, fn: float):
 
 
 def _creep(pr: Prepared, c: Cycles):
-    mid = _stick_ratios(pr, c, (0.3, 0.6))
-    late = _stick_ratios(pr, c, (0.8, 0.97))
+    mid = stick_ratios(pr, c, (0.3, 0.6))[1]
+    late = stick_ratios(pr, c, (0.8, 0.97))[1]
     n = min(mid.size, late.size)
     if n < 4:
         return 0.0, math.inf

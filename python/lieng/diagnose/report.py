@@ -60,6 +60,24 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
                          f"{(r['se'] or 0):.3g} | {r['effect_size']:+.4g} | {r['z']:.2f} | {r['p']:.2g} | "
                          f"{r['margin']} | {'**yes**' if r['named'] else 'no'} |")
         lines.append("")
+    if d.goodness:
+        lines += ["## Goodness of fit of the baseline", "",
+                  "Features the baseline must reproduce whatever the effect (slip duration in half natural periods, "
+                  "spread of the peaks over D, spread of the periods over their mean), record against the "
+                  "baseline's replicates; a departure beyond the replicates with no candidate named is "
+                  "`unexplained`.", "", "| feature | record | replicates mean | replicates sd |", "|---|---|---|---|"]
+        for k, g in d.goodness.items():
+            f = [("-" if g[a] is None else f"{g[a]:.4g}") for a in ("record", "replicates_mean", "replicates_sd")]
+            lines.append(f"| {k} | {f[0]} | {f[1]} | {f[2]} |")
+        lines.append("")
+    if d.sliding and d.sliding.get("levels_mm"):
+        lv = [v for v in d.sliding["levels_mm"] if v is not None]
+        tr = [v for v in d.sliding["presliding_travel_mm"] if v is not None]
+        lines += ["## Steady sliding, stroke by stroke", "",
+                  f"* {len(lv)} strokes; sliding level (x over the second half of each stroke): median "
+                  f"{np.median(lv):.4g} mm, spread {np.std(lv):.3g} mm",
+                  f"* drive travel until x is 90 % of the way to that level after a reversal: median "
+                  f"{np.median(tr):.4g} mm" if tr else "* no presliding ramp measured", ""]
     if d.effects:
         lines += ["## Named effects and gains", "", f"Metric: {METRIC}.", "",
                   "| effect | size | 95 % interval | p | gain | 90 % interval |", "|---|---|---|---|---|---|"]

@@ -171,35 +171,10 @@ def prepare(rec: Record) -> Prepared:
                     strokes=st, dt=dt, flipped=flipped, notes=notes)
 
 
-def _zigzag(x, h):
-    """Alternating extrema of x with hysteresis h: (indices, kinds) with kind
-    +1 for a maximum, -1 for a minimum."""
-    idx, kind = [], []
-    imax = imin = 0
-    trend = 0
-    for i in range(1, x.size):
-        xi = x[i]
-        if trend >= 0:
-            if xi > x[imax]:
-                imax = i
-            elif x[imax] - xi > h:
-                idx.append(imax)
-                kind.append(1)
-                trend, imin = -1, i
-                continue
-        if trend <= 0:
-            if xi < x[imin]:
-                imin = i
-            elif xi - x[imin] > h:
-                idx.append(imin)
-                kind.append(-1)
-                trend, imax = 1, i
-    return np.asarray(idx, int), np.asarray(kind, int)
-
-
 def _zigzag_fast(x, h):
-    """The same as :func:`_zigzag`, vectorised over candidate extrema (local
-    maxima and minima) so that long records take linear time in numpy."""
+    """Alternating extrema of x with hysteresis h: (indices, kinds) with kind
+    +1 for a maximum, -1 for a minimum; the walk runs over the candidate
+    extrema only (where the slope changes sign), so long records stay fast."""
     d = np.diff(x)
     sgn = np.sign(d)
     # indices where the slope changes sign (plateaus resolved to the left)
@@ -362,3 +337,21 @@ def estimate_fn(p: Prepared, c: Cycles, fn_guess: float | None = None):
     est = np.asarray(est)
     se = float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
     return f, se, len(slips)
+
+
+def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875)):
+    """Per stick (trough to next peak, the fraction ``part`` of it): the time
+    of its middle and the slope of x there over the mean drive."""
+    tt, rr = [], []
+    for k in np.flatnonzero(c.next_ok):
+        lo, hi = c.trough_i[k], c.peak_i[k + 1]
+        m = hi - lo
+        seg = np.arange(lo + int(m * part[0]), lo + int(m * part[1]))
+        if seg.size < 5:
+            continue
+        vd = float(np.mean(pr.vd[seg]))
+        if vd <= 0:
+            continue
+        tt.append(float(np.mean(pr.t[seg])))
+        rr.append(np.polyfit(pr.t[seg], pr.x[seg], 1)[0] / vd)
+    return np.asarray(tt), np.asarray(rr)
