@@ -33,7 +33,8 @@ NUISANCES = ("clean", "hum", "drift", "spikes", "quantisation", "coarse", "fn_of
 
 
 class SynthGen:
-    """``lieng synth`` behind the generators' interface."""
+    """``lieng synth`` behind the generators' interface, with the nuisances
+    applied to its output here (plain NumPy)."""
 
     NAME = "synth"
 
@@ -44,14 +45,47 @@ class SynthGen:
         from lieng.synth import synthesize
 
         rec = synthesize(case, seed)
+        g = np.random.default_rng(1000 + seed)
+        t, x, y, v0c = rec.t, rec.x.copy(), None if rec.y is None else rec.y.copy(), rec.v0_col
+        D = float(np.percentile(x, 98) - np.percentile(x, 2))
+        fn_given = rec.fn
+        if nuisance == "hum":
+            f = g.choice([50.0, 60.0])
+            ph = g.uniform(0, 2 * np.pi)
+            hum = lambda a: a * (np.sin(2 * np.pi * f * t + ph) + 0.3 * np.sin(4 * np.pi * f * t + 2 * ph))
+            x = x + hum(g.uniform(0.01, 0.05) * D)
+            if y is not None:
+                y = y + hum(g.uniform(0.01, 0.05) * float(np.ptp(y) + 1e-9))
+        elif nuisance == "drift":
+            x = x + g.uniform(-0.03, 0.03) * D * (t / t[-1])
+            if y is not None:
+                y = y + g.uniform(-0.05, 0.05) * float(np.mean(np.abs(y))) * (t / t[-1]) ** 2
+        elif nuisance == "spikes":
+            k = g.choice(t.size, max(1, int(g.uniform(0.0005, 0.005) * t.size)), replace=False)
+            x[k] += g.uniform(-0.3, 0.3, k.size) * D
+        elif nuisance == "quantisation":
+            q = g.uniform(0.002, 0.01) * D
+            x = np.round(x / q) * q
+        elif nuisance == "coarse":
+            step = max(1, int(round((1.0 / (rec.fn * (t[1] - t[0]))) / g.uniform(10, 15))))
+            t, x = t[::step], x[::step]
+            y = None if y is None else y[::step]
+            v0c = None if v0c is None else v0c[::step]
+        elif nuisance == "fn_off":
+            fn_given = rec.fn * (1.05 if g.uniform() < 0.5 else 0.95)
+        cols = {"t": t, "x": x}
+        if y is not None:
+            cols["y"] = y
+        if v0c is not None:
+            cols["v0"] = v0c
         path = Path(outdir) / "record.csv"
-        rec.write_csv(path)
-        args = ["--fn", repr(rec.fn)]
-        if rec.v0_col is None:
+        np.savetxt(path, np.column_stack(list(cols.values())), delimiter=",", header=",".join(cols), comments="",
+                   fmt="%.9g")
+        args = ["--fn", repr(fn_given)]
+        if v0c is None:
             args += ["--v0", repr(rec.v0)]
-        del np
-        return {"generator": "synth", "case": case, "seed": seed, "nuisance": "clean", "file": str(path),
-                "args": args, "fn_true": rec.fn, "fn_given": rec.fn}
+        return {"generator": "synth", "case": case, "seed": seed, "nuisance": nuisance, "file": str(path),
+                "args": args, "fn_true": rec.fn, "fn_given": fn_given}
 
 
 def generators(only=None):
@@ -143,8 +177,7 @@ def main(argv=None):
                     nu = NUISANCES[seed % len(NUISANCES)]
                     d = Path(tmp) / f"{gname}_{case}_{seed}"
                     d.mkdir()
-                    truth = g.write_record(case, seed, str(d), nu) if gname != "synth" else \
-                        g.write_record(case, seed, str(d))
+                    truth = g.write_record(case, seed, str(d), nu)
                     r = run_one(truth)
                     r.update(generator=gname, case=case, seed=seed, nuisance=truth.get("nuisance", nu))
                     results.append(r)

@@ -229,21 +229,28 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     base.y_c = base_all.y_c
     train = Judge(pr, c, fn_used, float(pr.t[0]), tsplit, aux.get("ylow"))
     effects = []
-    primary_ext, primary_gain = base, None
+    fitted = {}
+    e_train0 = train.error(base)[0]
     for k in named:
         cands = candidates(k, base, pr, c, fn_used, st, aux, tsplit)
-        ext = base
+        ext, e_tr = base, e_train0
         if cands:
             errs = [train.error(p)[0] for p in cands]
             if np.isfinite(min(errs)):
-                ext = cands[int(np.argmin(errs))]
+                ext, e_tr = cands[int(np.argmin(errs))], float(min(errs))
         g = gain(pr, c, fn_used, base, ext, tsplit, aux.get("ylow"))
+        # how much the extension explains of the training part: ranks the named effects
+        imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0
         r = rows[k]
+        fitted[k] = (ext, g, imp)
         effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
                                 "p": r["p"], "z": r["z"], "gain": g["gain"], "gain_interval_90": g["interval"],
+                                "training_improvement": imp,
                                 "extension": "none available" if ext is base else "fitted"}))
-        if primary_gain is None:
-            primary_ext, primary_gain = ext, g
+    # the primary effect: the one whose extension explains most of the training part
+    named.sort(key=lambda k: -fitted[k][2])
+    effects.sort(key=lambda e: named.index(e["effect"]))
+    primary_ext, primary_gain = (fitted[named[0]][0], fitted[named[0]][1]) if named else (base, None)
     g0 = primary_gain or gain(pr, c, fn_used, base, base, tsplit, aux.get("ylow"))
     if named:
         effect = named[0]

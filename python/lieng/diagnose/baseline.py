@@ -15,7 +15,10 @@ the start of every stroke.  It is identified from the record:
   the slope of phi and is part of it);
 * FS, the median peak; c0 from the slope of x in the sticks;
 * then the level of phi is moved until the simulated mean trough matches the
-  record's (the smoothing of x'' biases the level, not the shape).
+  record's (the smoothing of x'' biases the level, not the shape).  Below
+  RESOLVED samples per natural period a slip has too few samples for x'':
+  phi is then its level alone (a constant kinetic friction), the part of the
+  characteristic such a record resolves.
 
 The simulator (:func:`simulate`) runs the compiled slider core
 (``fortran/slider.f90``) stroke by stroke with the extensions' parameters
@@ -245,10 +248,17 @@ def pr_like(pr: Prepared, x, y=None) -> Prepared:
                     flipped=pr.flipped, notes=[])
 
 
+#: below this many samples per natural period x'' cannot be read inside a
+#: slip (it lasts half a period): the characteristic is then its level alone
+RESOLVED = 20
+
+
 def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6) -> Params:
     """The baseline (module docstring), identified on ``pr`` with its cycles ``c``."""
     idx, s, F, br, sid = slip_friction(pr, c, fn)
     sg, fg = characteristic(s, F)
+    if 1.0 / (fn * pr.dt) < RESOLVED:
+        sg, fg = np.array([0.0]), np.array([float(np.median(F)) if F.size else float(np.median(pr.x))])
     fs = float(np.median(pr.x[c.peak_i]))
     p = Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=stick_creep(pr, c))
     target = float(np.mean(pr.x[c.trough_i]))

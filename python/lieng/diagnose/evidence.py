@@ -176,7 +176,7 @@ def spectral_line(sig, dt, fmin, f0=None):
     S = np.fft.rfft(s * w)
     f = np.fft.rfftfreq(n, dt)
     amp = 2 * np.abs(S) / w.sum()
-    ok = (f > fmin) & (f < 0.45 / dt)
+    ok = (f > fmin) & (f < 0.49 / dt)
     for base in (50.0, 60.0):                      # mains hum is not physics
         for h in range(1, 8):
             ok &= np.abs(f - base * h) > 3.0 / (n * dt)
