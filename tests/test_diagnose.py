@@ -140,3 +140,36 @@ def test_a_thesis_style_trc_deck_is_accepted(tmp_path, capsys):
     # without --v0 a deck is refused (it has no drive velocity)
     assert main(["diagnose", str(deck), "-o", str(tmp_path / "p")]) == 2
     assert "--v0" in capsys.readouterr().err and not (tmp_path / "p").exists()
+
+
+def _force_record(path, rec, load):
+    """A synth record written as a lab writes a force record: TAB separated,
+    friction in mN through a 200 N/m spring, normal force in N, the stage
+    position in um (plain NumPy)."""
+    vd = rec.v0_col if rec.v0_col is not None else np.full(rec.t.size, rec.v0)
+    pos = np.r_[0, np.cumsum(0.5 * (vd[1:] + vd[:-1]) * np.diff(rec.t))]
+    N = 2.0 * load + 0.003 * np.random.default_rng(7).standard_normal(rec.t.size)
+    with open(path, "w") as fh:
+        fh.write("Time [s]\tFriction [mN]\tNormal [N]\tPosition [um]\n")
+        for row in zip(rec.t, 200.0 * rec.x, N, pos * 1000):
+            fh.write("\t".join(f"{v:.7g}" for v in row) + "\n")
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_force_records_with_a_normal_force(tmp_path, seed):
+    """Force records (TAB, mN, N, um, the drive from the position column):
+    a normal force that follows the motion is a load variation (named, with
+    gain); a constant one is not."""
+    lv = synthesize("load_variation", seed)
+    p = tmp_path / "lv.txt"
+    _force_record(p, lv, 1 + lv.truth["ky"] * (lv.y - 1.0))
+    assert main(["diagnose", str(p), "--stiffness", "200", "--fn", repr(lv.fn), "-o", str(tmp_path / "a"), "-q",
+                 "--no-plots"]) == 0
+    d = json.loads((tmp_path / "a" / "diagnosis.json").read_text())
+    assert d["effect"] == "load_variation" and d["gain"] >= 0.3
+    nn = synthesize("none", seed)
+    p = tmp_path / "nn.txt"
+    _force_record(p, nn, np.ones(nn.t.size))
+    assert main(["diagnose", str(p), "--stiffness", "200", "--fn", repr(nn.fn), "-o", str(tmp_path / "b"), "-q",
+                 "--no-plots"]) == 0
+    assert json.loads((tmp_path / "b" / "diagnosis.json").read_text())["effect"] == "none"

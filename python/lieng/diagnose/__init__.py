@@ -216,7 +216,8 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     if pr.y is not None:
         base_all.y_c = y_on_motion(pr.x, c.v, pr.y)
     st, se, aux = statistics(pr, c, fn_used, y_is_force=rec.y_is_force)
-    null, nrep = null_replicates(pr, base_all, fn_used, u_fn, B=replicates, budget=budget, progress=progress)
+    null, nrep = null_replicates(pr, base_all, fn_used, u_fn, B=replicates, budget=budget, progress=progress,
+                                 y_is_force=rec.y_is_force)
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld)
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])

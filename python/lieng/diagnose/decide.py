@@ -6,7 +6,8 @@ bootstrap**: B records simulated from the baseline on the record's own time
 grid and drive, with white noise at the record's own noise level (x and the
 normal channel; the normal channel modelled as its part locked to the
 motion), and with the natural frequency drawn uniformly within its stated
-uncertainty (a ``--fn`` off by a few per cent is a nuisance, not an effect);
+uncertainty; a normal force is constant in them (the baseline's constant
+load), a normal reading keeps its part locked to the motion (crosstalk) (a ``--fn`` off by a few per cent is a nuisance, not an effect);
 each replicate is analysed exactly like the record, with the nominal fn.
 
 For candidate k: z = (S - m0) / sqrt(max(s0, se)**2 + s0**2 / B), with m0, s0
@@ -56,7 +57,7 @@ def _norm_ppf(p):
 
 
 def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int = 39, budget: float = 25.0,
-                    seed: int = 0, progress=None):
+                    seed: int = 0, progress=None, y_is_force: bool = False):
     """The candidates' statistics on B baseline replicates (module docstring).
 
     Returns a dict name -> array of the replicates' values, and the
@@ -74,13 +75,16 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
         xb = xs + sx * rng.standard_normal(xs.size)
         yb = None
         if y is not None:
-            yb = base.y_c[0] + base.y_c[1] * xs + base.y_c[2] * vs + sy * rng.standard_normal(xs.size)
+            # a reading of the normal channel: its part locked to the motion is kept (crosstalk is not a
+            # load effect); a normal force: constant under the baseline's constant load
+            lock = 0.0 if y_is_force else base.y_c[1] * xs + base.y_c[2] * vs
+            yb = base.y_c[0] + lock + sy * rng.standard_normal(xs.size)
         q = pr_like(pr, xb, yb)
         try:
             c = find_cycles(q, fn)
             if c.n < 3:
                 continue
-            st, _, aux = statistics(q, c, fn, y=yb)
+            st, _, aux = statistics(q, c, fn, y=yb, y_is_force=y_is_force)
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             continue
         st.update(aux["gof"])

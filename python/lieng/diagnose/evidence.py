@@ -17,8 +17,11 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     The reverse construction F = x + x''/wn**2 in the slips regressed on a
     cubic in the sliding velocity, the branch and the low-passed normal
     channel; the friction change the normal channel explains across a cycle
-    (its coefficient times the channel's peak-to-peak) over D.  Needs a
-    normal channel that varies.
+    (its coefficient times the channel's peak-to-peak) over D.  With a
+    normal *force* channel the load variation is measured directly: the
+    relative peak-to-peak of the part of N locked to the motion (friction
+    follows the load: Amontons), provided the regression does not have the
+    friction run against N.  Needs a normal channel that varies.
 ``static_ageing``
     The peak against the log of the stick time (trough to next peak): the
     change over the record's range of stick times, over D, one-sided (the
@@ -120,7 +123,7 @@ def _twin(pr: Prepared, c: Cycles, fn: float):
     return est(np.ones(num.size, bool)), _jackknife(est, num.size)
 
 
-def _load(pr: Prepared, c: Cycles, fn: float, ylow):
+def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
     if ylow is None:
         return 0.0, math.inf, 0.0
     idx, s, F, br, sid = slip_friction(pr, c, fn)
@@ -142,7 +145,24 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow):
         coef = np.linalg.lstsq(A[m], F[m], rcond=None)[0]
         return float(coef[5] / np.std(yl) * span)
 
-    return est(np.ones(units.size, bool)), _jackknife(est, units.size), span
+    v = est(np.ones(units.size, bool))
+    if not y_is_force:
+        return v, _jackknife(est, units.size), span
+    # a normal force: its relative change locked to the motion is the load
+    # variation itself (friction follows the load, Amontons), unless the
+    # friction runs against it
+    mean = abs(float(np.mean(y)))
+    if not mean > 0 or not v > 0:
+        return 0.0, math.inf, span
+    blocks = np.array_split(np.arange(y.size), 10)
+
+    def rel(keep):
+        i = np.concatenate([b for b, k in zip(blocks, keep) if k])
+        yc = y_on_motion(pr.x[i], c.v[i], y[i])
+        lock = yc[1] * pr.x[i] + yc[2] * c.v[i]
+        return float((np.percentile(lock, 97.5) - np.percentile(lock, 2.5)) / mean)
+
+    return rel(np.ones(10, bool)), _jackknife(rel, 10), span
 
 
 def _ageing(pr: Prepared, c: Cycles):
@@ -338,8 +358,8 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> 
     ylow = lowpass(y, pr.dt, 1.5 * fn) if y is not None else None
     v, e = _twin(pr, c, fn)
     st["twin_branch"], se["twin_branch"] = v / D, e / D
-    v, e, yspan = _load(pr, c, fn, ylow)
-    st["load_variation"], se["load_variation"] = v / D, e / D
+    v, e, yspan = _load(pr, c, fn, ylow, y, y_is_force)
+    st["load_variation"], se["load_variation"] = (v, e) if y_is_force else (v / D, e / D)
     v, e, lrange = _ageing(pr, c)
     st["static_ageing"], se["static_ageing"] = v / D, e / D
     v, e, f_tr = _triggering(pr, c, fn, y, y_is_force, D)
@@ -351,7 +371,7 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> 
     v, e = _asymmetry(pr, c)
     st["direction_asymmetry"], se["direction_asymmetry"] = v / D, e / D
     st["creep"], se["creep"] = _creep(pr, c)
-    aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
+    aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "y_is_force": y_is_force, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
            # statistics calibrated within the record (a permutation test), not by the baseline's replicates
            "p_own": {"drive_modulation": p_drv}, "gof": goodness(pr, c, fn, D)}
     return st, se, aux

@@ -197,6 +197,8 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             yl = ylow[idx][m]
             A = np.column_stack([np.ones(ss.size), ss, ss ** 2, ss ** 3, br[m], yl - np.mean(ylow)])
             kf = float(np.linalg.lstsq(A, F[m], rcond=None)[0][5]) / Fbar
+            if aux.get("y_is_force"):
+                kf = 1.0 / abs(float(np.mean(ylow)))      # Amontons: the load factor is N / mean N
             for sc in (0.7, 1.0, 1.4):
                 k = sc * kf
                 ld = 1.0 + k * (ylow[c.peak_i[ctr_sel]] - np.mean(ylow))
