@@ -21,7 +21,7 @@ from ..errors import LiengInputError
 from .baseline import Params, fit_baseline, simulate
 from .decide import ALPHA, decide, misfit, null_replicates
 from .evidence import CANDIDATES, MARGIN, SLIDING, sliding_statistics, statistics, y_on_motion
-from .extend import METRIC, Judge, candidates, gain, split, subset
+from .extend import METRIC, Judge, candidates, gain, refine, split, subset
 from .read import Record, read_record, record_from_arrays, record_from_trc_deck
 from .segment import Cycles, estimate_fn, find_cycles, prepare
 
@@ -106,6 +106,11 @@ class Diagnosis:
                        "effect_size": "per evidence row: over the drop D, or relative"},
              "notes": self.notes, "warnings": self.warnings}
         return _finite(d)
+
+
+def _train_trough(pr, c, tsplit) -> float:
+    sel = pr.t[c.peak_i] < tsplit
+    return float(np.mean(pr.x[c.trough_i[sel]])) if np.any(sel) else float(np.mean(pr.x[c.trough_i]))
 
 
 def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=None) -> Diagnosis:
@@ -231,14 +236,18 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     train = Judge(pr, c, fn_used, float(pr.t[0]), tsplit, aux.get("ylow"))
     effects = []
     fitted = {}
-    e_train0 = train.error(base)[0]
     for k in named:
         cands = candidates(k, base, pr, c, fn_used, st, aux, tsplit)
+        e_train0 = train.error(base)[0]
         ext, e_tr = base, e_train0
         if cands:
-            errs = [train.error(p)[0] for p in cands]
+            errs = [train.error(p, bool(p.trig_ay))[0] for p in cands]
             if np.isfinite(min(errs)):
-                ext, e_tr = cands[int(np.argmin(errs))], float(min(errs))
+                ext = cands[int(np.argmin(errs))]
+                ext, e_tr = refine(k, ext, base, train, pr, fn_used, pr.t < tsplit, _train_trough(pr, c, tsplit),
+                                   ylow=aux.get("ylow"))
+                if ext.trig_ay:           # the same metric for both: with the normal channel's unlocked part
+                    e_train0 = train.error(base, True)[0]
         g = gain(pr, c, fn_used, base, ext, tsplit, aux.get("ylow"))
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0

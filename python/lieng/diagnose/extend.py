@@ -15,9 +15,10 @@ cycles of
   rise time (over the mean period);
 * the mean slip waveform: x from each peak at 9 instants over 0.6 natural
   periods, less the peak, over D;
-* with a normal channel: the RMS difference, in time, between the parts of
-  the record's and the model's y that are not locked to the motion (each
-  less the baseline's regression of y on x and x'), over y's spread.
+* when the extension predicts a part of the normal channel that is not
+  locked to the motion (triggering): the RMS difference, in time, between
+  that part of the record's y and of the model's (each less the baseline's
+  regression of y on x and x'), over y's spread.
 
 gain = 1 - e_extended / e_baseline, with a 90 % interval from resampling the
 held-out cycles; always finite.
@@ -39,7 +40,8 @@ __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles: mean and spread of peak and trough (/ drop D), "
           "period and rise time (/ mean period); mean slip waveform at 9 instants over 0.6 natural periods (/ D); "
-          "with a normal channel, the RMS difference in time of the parts of y not locked to the motion (/ spread of y)")
+          "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in time "
+          "(/ spread of y)")
 NWAVE = 9
 
 
@@ -107,8 +109,11 @@ class Judge:
             ys = pr.y[self.mask]
             self.ysd = float(np.std(ys)) if ys.size > 2 and np.std(ys) > 0 else 1.0
 
-    def vector(self, p: Params, sel=None):
-        """(record features, simulated features) or None."""
+    def vector(self, p: Params, with_y: bool = False):
+        """(record features, simulated features, simulated x) or None; the
+        normal channel's unlocked part is compared only ``with_y`` (when the
+        model predicts one: otherwise it is the same for every model and
+        would only dilute the comparison)."""
         pr = self.pr
         xs, vs, _ = simulate(pr, p, self.fn, self.ylow)
         try:
@@ -121,7 +126,7 @@ class Judge:
         if fs is None or self.meas is None:
             return None
         m, s = self.meas, fs
-        if pr.y is not None:
+        if pr.y is not None and with_y:
             # the part of y not locked to the motion (locked to the clock: no phase drift), record against model
             c0, c1, c2 = p.y_c
             r_rec = pr.y - (c0 + c1 * pr.x + c2 * self.c.v)
@@ -130,8 +135,8 @@ class Judge:
             m, s = np.r_[m, 0.0], np.r_[s, ey]
         return m, s, xs
 
-    def error(self, p: Params):
-        v = self.vector(p)
+    def error(self, p: Params, with_y: bool = False):
+        v = self.vector(p, with_y)
         if v is None:
             return math.inf, None
         m, s, xs = v
@@ -279,8 +284,9 @@ def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: 
     """Errors of the baseline and the extension on the held-out part, the
     gain and its 90 % interval (resampling the held-out cycles)."""
     J = Judge(pr, c, fn, tsplit, float(pr.t[-1]) + pr.dt, ylow)
-    vb = J.vector(base)
-    ve = J.vector(ext) if ext is not base else vb
+    with_y = bool(ext.trig_ay)
+    vb = J.vector(base, with_y)
+    ve = J.vector(ext, with_y) if ext is not base else vb
     if vb is None or ve is None or J.meas is None:
         return dict(e0=0.0, e1=0.0, gain=0.0, interval=[0.0, 0.0], x_base=None, x_ext=None)
 
@@ -301,7 +307,7 @@ def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: 
             m = _features(pr, pr.x, c, pick, fn, J.D, J.P)
             if m is None:
                 continue
-            if pr.y is not None:
+            if pr.y is not None and with_y:
                 m = np.r_[m, 0.0]
             a, b = err(m, vb[1]), err(m, ve[1])
             if a > 0:
@@ -310,3 +316,46 @@ def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: 
     g = float(np.clip(g, -1e6, 1.0))
     return dict(e0=e0, e1=e1, gain=g, interval=[float(np.clip(v, -1e6, 1.0)) for v in iv], x_base=vb[2],
                 x_ext=ve[2])
+
+
+#: the parameter each extension scales (refined on the training error)
+SCALED = {"twin_branch": ("delta",), "load_variation": ("load_k", "load_kx"), "static_ageing": ("age_a",),
+          "triggering": ("trig_eps",), "drive_modulation": ("drv_a",), "friction_drift": ("drift",),
+          "creep": ("creep1",)}
+
+
+def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, target_mask, target,
+           ylow=None, it: int = 8) -> tuple:
+    """Scale the extension's own parameter(s) of ``best`` by a factor in
+    [0, 2] chosen by golden-section search on the training error (the level
+    refitted each time).  Returns (params, training error)."""
+    names = [n for n in SCALED.get(effect, ()) if getattr(best, n)]
+    if not names:
+        return best, judge.error(best, bool(best.trig_ay))[0]
+    with_y = bool(best.trig_ay)
+
+    def make(f):
+        q = best.copy(**{n: f * getattr(best, n) for n in names})
+        return _fit_level(pr, q, fn, target, target_mask, ylow=ylow if q.load_k else None)
+
+    def cost(f):
+        e = judge.error(make(f), with_y)[0]
+        return e if math.isfinite(e) else 1e300
+
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    a, b = 0.2, 2.0
+    c1, c2 = b - g * (b - a), a + g * (b - a)
+    f1, f2 = cost(c1), cost(c2)
+    for _ in range(it):
+        if f1 < f2:
+            b, c2, f2 = c2, c1, f1
+            c1 = b - g * (b - a)
+            f1 = cost(c1)
+        else:
+            a, c1, f1 = c1, c2, f2
+            c2 = a + g * (b - a)
+            f2 = cost(c2)
+    f = c1 if f1 < f2 else c2
+    e1 = min(f1, f2)
+    e_best = cost(1.0)
+    return (make(f), e1) if e1 < e_best else (best, e_best)
