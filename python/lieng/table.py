@@ -49,7 +49,13 @@ def _split_header(line: str):
         return "\t", [c.strip() for c in line.split("\t")]
     if ";" in line:
         return ";", [c.strip() for c in line.split(";")]
-    return None, line.split()
+    cells = []
+    for tok in line.split():
+        if cells and tok[:1] in "[(" and not cells[-1].endswith(("]", ")")):
+            cells[-1] += " " + tok            # "t [s]": the unit belongs to the name before it
+        else:
+            cells.append(tok)
+    return None, cells
 
 
 def read_table(path, expect: str) -> Table:
