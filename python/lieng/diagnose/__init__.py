@@ -121,7 +121,11 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
     stroke (direction asymmetry and drift tested within the record: block
     jackknife, Holm)."""
     st, se, aux = sliding_statistics(pr)
-    rows = decide(st, se, {k: np.zeros(10) for k in CANDIDATES}, applicable=SLIDING)
+    p_own = {"position_dependence": aux["p_position"]} if "p_position" in aux else {}
+    app = [k for k in SLIDING if k != "position_dependence" or p_own]
+    rows = decide(st, se, {k: np.zeros(10) for k in CANDIDATES}, applicable=app, p_own=p_own)
+    if "position_note" in aux:
+        rows["position_dependence"]["withheld"] = aux["position_note"]
     named = [k for k in SLIDING if rows[k]["named"]]
     effects = [_finite({"effect": k, "effect_size": rows[k]["effect_size"], "interval_95": rows[k].get("interval"),
                         "p": rows[k]["p"], "z": rows[k]["z"], "gain": 0.0, "gain_interval_90": [0.0, 0.0],

@@ -111,6 +111,8 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
     p_own = p_own or {}
     withheld = withheld or {}
     for k in CANDIDATES:
+        if applicable is not None and k not in applicable:
+            withheld.setdefault(k, "does not apply to this record")
         if k in withheld:
             rows[k] = dict(statistic=float(st[k]), null_mean=0.0, null_sd=0.0, se=None, z=0.0, p=1.0,
                            effect_size=0.0, applicable=False, withheld=withheld[k])

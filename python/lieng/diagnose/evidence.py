@@ -47,6 +47,14 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
 ``creep``
     The stick velocity in the last fifth of the rise relative to its middle:
     1 - v_late / v_mid (the slider creeping before it slips).
+``position_dependence``
+    With repeated passes over the track (two strokes or more): the peaks
+    (or, in steady sliding, x over the last 40 % of each stroke, both
+    directions pooled against the absolute position, so that what depends on
+    the time since a reversal cancels) against the drive's position in six
+    bins, less each stroke's mean; the range of the bin means over D (or the
+    sliding level), tested by the one-way analysis of variance within the
+    record (F test).
 """
 
 from __future__ import annotations
@@ -61,10 +69,11 @@ from .segment import Cycles, Prepared, slip_arcs, stick_ratios
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "statistics", "lowpass"]
 
 CANDIDATES = ("load_variation", "twin_branch", "static_ageing", "triggering", "drive_modulation",
-              "friction_drift", "direction_asymmetry", "creep")
+              "friction_drift", "direction_asymmetry", "creep", "position_dependence")
 #: effects with a direction: only a positive statistic counts
 ONE_SIDED = {"twin_branch", "static_ageing", "triggering", "drive_modulation", "creep"}
-#: the smallest effect size this report calls physically relevant (stated
+#: the smallest effect size this report calls physically relevant (position
+#: dependence: the range of the friction along the track, 10 % of the drop) (stated
 #: a priori from the thesis and common tribometry, not fitted to data):
 #: twin 5 % of the drop (ch. 4.1's loops are 10-30 %), load 5 %, ageing 5 %
 #: of the drop over the stick times seen (App. 1: several per cent per
@@ -72,7 +81,8 @@ ONE_SIDED = {"twin_branch", "static_ageing", "triggering", "drive_modulation", "
 #: times smaller than the stick-slip), drive 5 %, drift 10 % over the
 #: record, asymmetry 5 %, creep 10 %.
 MARGIN = {"load_variation": 0.05, "twin_branch": 0.05, "static_ageing": 0.05, "triggering": 0.02,
-          "drive_modulation": 0.05, "friction_drift": 0.10, "direction_asymmetry": 0.05, "creep": 0.10}
+          "drive_modulation": 0.05, "friction_drift": 0.10, "direction_asymmetry": 0.05, "creep": 0.10,
+          "position_dependence": 0.10}
 
 
 def lowpass(y, dt, fcut):
@@ -282,7 +292,7 @@ def _drive(pr: Prepared, c: Cycles, fn: float):
     t, r = _stick_series(pr, c)
     per = c.periods(pr.t)
     if r.size < 8 or per.size < 2:
-        return 0.0, math.inf, 1.0, 0.0
+        return 0.0, math.inf, None, 0.0
     f_ss = 1.0 / float(np.median(per))
     span = float(t[-1] - t[0])
     # from two cycles of the modulation in the record to half the stick rate (Nyquist of the stick sampling)
@@ -347,6 +357,46 @@ def goodness(pr: Prepared, c: Cycles, fn: float, D: float) -> dict:
             "period_spread": float(np.std(per) / np.mean(per)) if per.size > 1 else 0.0}
 
 
+def position_anova(pos, val, group, nbins: int = 6):
+    """Values against position along the track, less each group's (stroke's)
+    mean: (range of the position-bin means, p of the one-way F test)."""
+    from scipy.stats import f as fdist
+
+    ok = np.isfinite(pos) & np.isfinite(val)
+    pos, val, group = pos[ok], val[ok], group[ok]
+    if np.unique(group).size < 2 or val.size < 3 * nbins:
+        return 0.0, 1.0
+    r = val.copy()
+    for gval in np.unique(group):
+        m = group == gval
+        r[m] -= np.mean(r[m])
+    edges = np.quantile(pos, np.linspace(0, 1, nbins + 1))
+    b = np.clip(np.searchsorted(edges, pos, side="right") - 1, 0, nbins - 1)
+    means, ss_b, ss_w, k = [], 0.0, 0.0, 0
+    for j in range(nbins):
+        m = b == j
+        if np.count_nonzero(m) < 2:
+            continue
+        mu = float(np.mean(r[m]))
+        means.append(mu)
+        ss_b += np.count_nonzero(m) * mu ** 2
+        ss_w += float(np.sum((r[m] - mu) ** 2))
+        k += 1
+    n = r.size
+    df_b, df_w = k - 1, n - k - (np.unique(group).size - 1)
+    if k < 3 or df_w < 2 or not ss_w > 0:
+        return 0.0, 1.0
+    F = (ss_b / df_b) / (ss_w / df_w)
+    return float(np.ptp(means)), float(fdist.sf(F, df_b, df_w))
+
+
+def _position(pr: Prepared, c: Cycles):
+    if pr.pos is None or len(pr.strokes) < 2 or c.n < 18 or np.unique(c.stroke).size < 2:
+        return 0.0, math.inf, None
+    rng, p = position_anova(pr.pos[c.peak_i], pr.x[c.peak_i], c.stroke)
+    return rng, 0.0, p
+
+
 def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> tuple[dict, dict, dict]:
     """Every candidate's effect size and its standard error from the record's
     own scatter, and auxiliary values (D, the triggering line's frequency,
@@ -371,14 +421,16 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> 
     v, e = _asymmetry(pr, c)
     st["direction_asymmetry"], se["direction_asymmetry"] = v / D, e / D
     st["creep"], se["creep"] = _creep(pr, c)
+    v, e, p_pos = _position(pr, c)
+    st["position_dependence"], se["position_dependence"] = v / D, e
     aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "y_is_force": y_is_force, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
            # statistics calibrated within the record (a permutation test), not by the baseline's replicates
-           "p_own": {"drive_modulation": p_drv}, "gof": goodness(pr, c, fn, D)}
+           "p_own": {k: v for k, v in (("drive_modulation", p_drv), ("position_dependence", p_pos)) if v is not None}, "gof": goodness(pr, c, fn, D)}
     return st, se, aux
 
 
 #: the candidates read on a record without stick-slip (steady sliding)
-SLIDING = ("direction_asymmetry", "friction_drift")
+SLIDING = ("direction_asymmetry", "friction_drift", "position_dependence")
 
 
 def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
@@ -423,4 +475,48 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
         est = lambda keep: float(np.polyfit(tmid[keep], res[keep], 1)[0] * span / mean) \
             if np.count_nonzero(keep) > 3 else np.nan
         st["friction_drift"], se["friction_drift"] = est(np.ones(lv.size, bool)), _jackknife(est, lv.size)
+    # along the track: x after each stroke's presliding ramp (past its 90 % point) against the drive's
+    # position, both directions pooled over the positions both cover (friction that belongs to the track
+    # has one profile in both directions; what depends on the time since a reversal is mirrored)
+    if pr.pos is not None and lv.size >= 4 and np.any(fw) and np.any(bw):
+        ps, vs, gs, ds = [], [], [], []
+        for k, s in enumerate(pr.strokes):
+            x = pr.x[s.j0:s.j0 + s.n]
+            P = float(np.median(x[x.size // 2:]))
+            x0 = float(np.median(x[:3]))
+            k90 = np.flatnonzero((x - x0) >= 0.9 * (P - x0)) if P > x0 else np.array([], int)
+            m0 = int(k90[0]) if k90.size else s.n // 2
+            sl = slice(s.j0 + m0, s.j0 + s.n)
+            ps.append(pr.pos[sl])
+            vs.append(pr.x[sl])
+            gs.append(np.full(s.n - m0, k))
+            ds.append(np.full(s.n - m0, s.sign))
+        ps, vs, gs, ds = map(np.concatenate, (ps, vs, gs, ds))
+        lo = max(np.percentile(ps[ds > 0], 2), np.percentile(ps[ds < 0], 2))
+        hi = min(np.percentile(ps[ds > 0], 98), np.percentile(ps[ds < 0], 98))
+        stroke_len = float(np.percentile(pr.pos, 99) - np.percentile(pr.pos, 1))
+        if hi - lo >= 0.25 * stroke_len:
+            m = (ps >= lo) & (ps <= hi)
+            r, p = _binned_anova(ps[m], vs[m], gs[m])
+            st["position_dependence"] = r / mean
+            aux["p_position"] = p
+        else:
+            aux["position_note"] = (f"the two directions slide past their ramps over {max(hi - lo, 0):.3g} mm in "
+                                    f"common, under a quarter of the {stroke_len:.3g} mm stroke: position "
+                                    f"dependence cannot be told from the time since a reversal")
     return st, se, aux
+
+
+def _binned_anova(pos, val, group, nbins: int = 6):
+    """Position dependence from one mean per stroke and position bin."""
+    edges = np.quantile(pos, np.linspace(0, 1, nbins + 1))
+    b = np.clip(np.searchsorted(edges, pos, side="right") - 1, 0, nbins - 1)
+    P, V, G = [], [], []
+    for gval in np.unique(group):
+        for j in range(nbins):
+            m = (group == gval) & (b == j)
+            if np.count_nonzero(m):
+                P.append(0.5 * (edges[j] + edges[j + 1]))
+                V.append(float(np.mean(val[m])))
+                G.append(gval)
+    return position_anova(np.asarray(P), np.asarray(V), np.asarray(G), nbins)

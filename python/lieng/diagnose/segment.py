@@ -94,6 +94,8 @@ class Prepared:
     dt: float
     flipped: bool
     notes: list = field(default_factory=list)
+    #: the drive's position along the track (mm, the record's own direction)
+    pos: np.ndarray | None = None
 
     def stroke_slices(self):
         return [slice(s.j0, s.j0 + s.n) for s in self.strokes]
@@ -167,8 +169,10 @@ def prepare(rec: Record) -> Prepared:
     if len(st) > 1 or st[0].sign < 0:
         nb = sum(1 for s in st if s.sign < 0)
         notes.append(f"{len(st)} strokes ({len(st) - nb} forward, {nb} backward), each turned forward")
+    track = np.r_[0.0, np.cumsum(0.5 * (rec.vd[1:] + rec.vd[:-1]) * dt)]
+    pos = np.concatenate([track[s.i0:s.i1] for s in st])
     return Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
-                    strokes=st, dt=dt, flipped=flipped, notes=notes)
+                    strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos)
 
 
 def _zigzag_fast(x, h):
