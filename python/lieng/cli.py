@@ -401,8 +401,20 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    import warnings
+
+    import numpy as np
+
     parser = build_parser()
     args = parser.parse_args(argv)
+    # numerical warnings are not messages for the user: every output is
+    # checked for finiteness where it is written, and bad input gets one line
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return _dispatch(parser, args)
+
+
+def _dispatch(parser, args) -> int:
     try:
         if args.command == "run":
             return {"lieng1": _run_lieng1, "mlien": _run_mlien, "trc": _run_trc}[args.program](args)

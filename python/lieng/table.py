@@ -21,6 +21,9 @@ __all__ = ["read_columns", "read_table", "Table"]
 
 #: the longest line read (characters): a longer one is not a table row
 MAX_LINE = 100_000
+#: the largest magnitude a measured value may have (squares and sums of it
+#: must stay finite in double precision)
+MAX_ABS = 1e100
 
 
 class Table:
@@ -122,6 +125,9 @@ def read_table(path, expect: str) -> Table:
                                       f"number") from None
             if not math.isfinite(val):
                 raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is not a finite number")
+            if abs(val) > MAX_ABS:
+                raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is out of range for a "
+                                      f"measurement (|value| > {MAX_ABS:g})")
             vals.append(val)
         data.append(vals)
         lines.append(r + 1)

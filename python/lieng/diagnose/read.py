@@ -93,6 +93,16 @@ def _fail(msg):
     raise LiengInputError(msg)
 
 
+#: the drive velocities a rig can have (mm/s): 1 nm/s to 1 km/s
+V0_RANGE = (1e-6, 1e6)
+
+
+def _check_v0(v0) -> None:
+    if not (math.isfinite(v0) and V0_RANGE[0] <= abs(v0) <= V0_RANGE[1]):
+        _fail(f"--v0 {v0:g}: the drive velocity must be a number of magnitude {V0_RANGE[0]:g} to "
+              f"{V0_RANGE[1]:g} mm/s")
+
+
 def _role(name: str):
     key = name.strip().lower().replace(" ", "_").replace("-", "_")
     for role, alts in _NAMES.items():
@@ -177,8 +187,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         if stiffness is None:
             _fail(f"{path}: a force record (column {cols['F'][0]}): --stiffness K (N/m, the tangential spring) "
                   f"is needed to turn the force into the spring's extension")
-        if not (math.isfinite(stiffness) and stiffness > 0):
-            _fail(f"--stiffness {stiffness}: the stiffness must be a positive number (N/m)")
+        if not (math.isfinite(stiffness) and 1e-6 <= stiffness <= 1e12):
+            _fail(f"--stiffness {stiffness:g}: the stiffness must be a number from 1e-06 to 1e+12 (N/m)")
         F = cols["F"][1] * _scale(path, cols["F"][0], units["F"], _FORCE, "force")
         x = F / stiffness * 1e3
         y, y_force = None, False
@@ -197,8 +207,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
     if v0 is not None and (vcol is not None or pos is not None):
         notes.append("--v0 ignored: the record gives the drive")
     if v0 is not None and vcol is None and pos is None:
-        if not (math.isfinite(v0) and v0 != 0):
-            _fail(f"--v0 {v0}: the drive velocity must be a non-zero number (mm/s)")
+        _check_v0(v0)
     rec = _regularise(path, t, {"x": x, "y": y, "v0": vcol, "pos": pos}, notes)
     t, x, y, vcol, pos = rec["t"], rec["x"], rec["y"], rec["v0"], rec["pos"]
     dt = float(t[1] - t[0])
@@ -231,8 +240,8 @@ def record_from_arrays(t, x, v0, y=None, *, y_is_force=False, source="arrays") -
         _fail("t must increase")
     notes = []
     vcol = None if np.ndim(v0) == 0 else np.asarray(v0, float)
-    if vcol is None and not (math.isfinite(float(v0)) and float(v0) != 0):
-        _fail(f"v0 {v0}: the drive velocity must be a non-zero number (mm/s)")
+    if vcol is None:
+        _check_v0(float(v0))
     rec = _regularise(source, t, {"x": x, "y": None if y is None else np.asarray(y, float), "v0": vcol,
                                   "pos": None}, notes)
     vd = rec["v0"] if vcol is not None else np.full_like(rec["t"], float(v0))
@@ -367,8 +376,7 @@ def record_from_trc_deck(path, v0: float | None) -> tuple[Record, float]:
         _fail(f"{path}: the readings' times do not increase (NT): cannot be resampled")
     if v0 is None:
         _fail(f"{path}: a TRC deck does not give the drive velocity: --v0 is needed")
-    if not (math.isfinite(v0) and v0 != 0):
-        _fail(f"--v0 {v0}: the drive velocity must be a non-zero number (mm/s)")
+    _check_v0(v0)
     notes = []
     y = xn if np.any(xn != 0) else None
     rec = _regularise(path, t, {"x": x, "y": y, "v0": None, "pos": None}, notes)
