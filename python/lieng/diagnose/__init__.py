@@ -111,6 +111,33 @@ class Diagnosis:
         return _finite(d)
 
 
+def _stiffness_from_sticks(pr):
+    """The stiffness (N/m) from a force record read with 1 N/m (x holds the
+    force in N times 1000, so its rise over the drive while the slider sticks
+    is the stiffness): the median stick slope over the drive, or in steady
+    sliding the ramp after each reversal (its steepest fifth)."""
+    from .segment import stick_ratios
+
+    c = find_cycles(pr, None)
+    if c.n >= 4:
+        r = stick_ratios(pr, c)[1]
+        if r.size >= 3 and np.median(r) > 0:
+            return float(np.median(r))
+    slopes = []
+    for s in pr.strokes:
+        x = pr.x[s.j0:s.j0 + s.n]
+        v = pr.vd[s.j0:s.j0 + s.n]
+        if x.size < 20:
+            continue
+        dx = np.gradient(x, pr.dt)
+        ok = v > 0.5 * np.max(v)
+        if np.count_nonzero(ok) >= 10:
+            q = dx[ok] / v[ok]
+            slopes.append(float(np.percentile(q, 80)))
+    pos = [s for s in slopes if s > 0]
+    return float(np.median(pos)) if pos else None
+
+
 def _train_trough(pr, c, tsplit) -> float:
     sel = pr.t[c.peak_i] < tsplit
     return float(np.mean(pr.x[c.trough_i[sel]])) if np.any(sel) else float(np.mean(pr.x[c.trough_i]))
@@ -179,6 +206,16 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
     warnings = []
+    if rec.stiffness_unknown:
+        k = _stiffness_from_sticks(pr)
+        if k is None:
+            raise LiengInputError(f"{rec.source}: a force record without --stiffness, and no sticks or reversal "
+                                  f"ramps to read it from: give --stiffness (N/m)")
+        pr.x = pr.x / k
+        rec.x = rec.x / k
+        rec.stiffness = k
+        notes.append(f"tangential stiffness estimated from the sticks: {rec.stiffness:.4g} N/m (the force rises at "
+                     f"stiffness x drive velocity while the slider sticks); give --stiffness to set it")
     span = float(rec.t[-1] - rec.t[0])
     if fn is not None and fn * span < 4:
         raise LiengInputError(f"--fn {fn:g} Hz: the record ({span:.4g} s) spans fewer than 4 natural periods; "

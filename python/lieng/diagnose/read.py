@@ -11,6 +11,8 @@ units in the header in brackets or the defaults below):
 * **force records** ``t,F[,N][,position|v0]`` with ``stiffness`` (N/m): the
   friction force read through the spring (N, mN, uN or kN), the normal force,
   the drive (stage) position (mm, um, m) or velocity; x = F / stiffness.
+  Without the stiffness the diagnosis estimates it from the sticks (x rises
+  at the drive velocity while the slider sticks) and says so.
 
 Without a drive column the constant ``v0`` is used; a drive may be signed
 and may reverse (reciprocating rigs: see :mod:`.segment`).  Uneven sampling
@@ -83,6 +85,10 @@ class Record:
     source: str = "record"
     notes: list = field(default_factory=list)
     fn_hint: float | None = None
+    #: a force record read without --stiffness: x is the force (N) times
+    #: 1000 until the diagnosis estimates the stiffness (N/m) from the sticks
+    stiffness_unknown: bool = False
+    stiffness: float | None = None
 
     @property
     def dt(self) -> float:
@@ -184,13 +190,11 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         elif "N" in cols:
             y, y_force = cols["N"][1] * _scale(path, cols["N"][0], units["N"], _FORCE, "force"), True
     else:
-        if stiffness is None:
-            _fail(f"{path}: a force record (column {cols['F'][0]}): --stiffness K (N/m, the tangential spring) "
-                  f"is needed to turn the force into the spring's extension")
-        if not (math.isfinite(stiffness) and 1e-6 <= stiffness <= 1e12):
+        unknown = stiffness is None
+        if not unknown and not (math.isfinite(stiffness) and 1e-6 <= stiffness <= 1e12):
             _fail(f"--stiffness {stiffness:g}: the stiffness must be a number from 1e-06 to 1e+12 (N/m)")
         F = cols["F"][1] * _scale(path, cols["F"][0], units["F"], _FORCE, "force")
-        x = F / stiffness * 1e3
+        x = F / (1.0 if unknown else stiffness) * 1e3
         y, y_force = None, False
         if "N" in cols:
             y, y_force = cols["N"][1] * _scale(path, cols["N"][0], units["N"], _FORCE, "force"), True
@@ -221,7 +225,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         vd, recorded = np.full_like(t, float(v0)), False
     if not np.any(np.abs(vd) > 0):
         _fail(f"{path}: the drive never moves (all zero): no stick-slip")
-    out = Record(t=t, x=x, vd=vd, y=y, y_is_force=y_force, drive_recorded=recorded, source=str(path), notes=notes)
+    out = Record(t=t, x=x, vd=vd, y=y, y_is_force=y_force, drive_recorded=recorded, source=str(path), notes=notes,
+                 stiffness_unknown="F" in cols and "x" not in cols and stiffness is None,
+                 stiffness=stiffness if "F" in cols and "x" not in cols else None)
     condition(out)
     return out
 
