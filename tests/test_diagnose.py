@@ -228,3 +228,50 @@ def test_a_reversing_drive_is_cut_into_strokes(tmp_path):
     d = json.loads((tmp_path / "o" / "diagnosis.json").read_text())
     assert any("strokes" in s for s in d["notes"])
     assert d["effect"] == "none", d["reason"]
+
+
+def _reciprocating_coulomb(fs_of_pos, fn=20.0, v0=2.0, stroke=8.0, nstrokes=8, fk=0.4, rate=2000.0, seed=0):
+    """A reciprocating Coulomb slider written out analytically (plain NumPy,
+    no lieng code): sticks at the drive velocity until |x| reaches the static
+    limit at the drive's position, slips half a natural period about the
+    kinetic level; strokes of ``stroke`` mm with short dwells."""
+    g = np.random.default_rng(seed)
+    dt, wn = 1.0 / rate, 2 * np.pi * fn
+    t, x, v = [], [], []
+    tt, xx, pos = 0.0, 0.0, 0.0
+    for k in range(nstrokes):
+        d = 1.0 if k % 2 == 0 else -1.0
+        for _ in range(40):                               # dwell
+            t.append(tt), x.append(xx), v.append(0.0)
+            tt += dt
+        travel = 0.0
+        slip_t, xp = None, 0.0
+        while travel < stroke:
+            if slip_t is None:
+                xx += d * v0 * dt
+                if d * xx >= fs_of_pos(pos):
+                    slip_t, xp = 0.0, xx
+            else:
+                slip_t += dt
+                xx = d * fk + (xp - d * fk) * np.cos(wn * slip_t)
+                if wn * slip_t >= np.pi:
+                    slip_t = None
+            pos += d * v0 * dt
+            travel += v0 * dt
+            t.append(tt), x.append(xx), v.append(d * v0)
+            tt += dt
+    x = np.asarray(x) + 0.002 * g.standard_normal(len(x))
+    return np.asarray(t), x, np.asarray(v)
+
+
+@pytest.mark.parametrize("amp,named", [(0.25, True), (0.0, False)])
+def test_friction_along_the_track(tmp_path, amp, named):
+    """Static friction that depends on the position along a reciprocating
+    track (the same profile in both directions) is named position_dependence;
+    a uniform track is not."""
+    t, x, v = _reciprocating_coulomb(lambda p: 1.0 + amp * np.sin(2 * np.pi * p / 8.0))
+    p = tmp_path / "track.csv"
+    _write(p, {"t": t, "x": x, "v0": v})
+    assert main(["diagnose", str(p), "--fn", "20", "-o", str(tmp_path / "o"), "-q", "--no-plots"]) == 0
+    d = json.loads((tmp_path / "o" / "diagnosis.json").read_text())
+    assert d["evidence"]["position_dependence"]["named"] is named, d["evidence"]["position_dependence"]
