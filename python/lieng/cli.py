@@ -359,14 +359,16 @@ def build_parser() -> argparse.ArgumentParser:
                                     "measure its gain on the held-out last 30 percent of the record.")
     dg.add_argument("data", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
                     "the header (comma, TAB or whitespace), or a TRC deck")
-    dg.add_argument("--v0", type=float, help="drive velocity (mm/s) when the record has no v0/position column")
-    dg.add_argument("--fn", type=float, help="natural frequency of the tangential mode (Hz); estimated from the "
-                    "slips when not given (a TRC deck gives it: OMNH)")
-    dg.add_argument("--stiffness", type=float, help="tangential stiffness (N/m): needed for a force record")
+    dg.add_argument("--v0", type=float, metavar="MM_S",
+                    help="drive velocity (mm/s) when the record has no v0/position column")
+    dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "
+                    "estimated from the slips when not given (a TRC deck gives it: OMNH)")
+    dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
+                    "record; estimated from the sticks when not given")
     dg.add_argument("-o", "--outdir", required=True, help="output directory")
     dg.add_argument("--json", action="store_true", help="print diagnosis.json")
     dg.add_argument("--no-plots", action="store_true", help="write diagnosis.json and report.md only")
-    dg.add_argument("-q", "--quiet", action="store_true")
+    dg.add_argument("-q", "--quiet", action="store_true", help="print nothing (errors still go to stderr)")
     sy = sub.add_parser("synth", help="synthetic measured data with an effect hidden in it",
                         description="Write a synthetic stick-slip record (t,x[,y][,v0]) with realistic noise "
                                     "and one effect hidden in it (an implementation independent of diagnose).")
