@@ -139,9 +139,16 @@ def _plots(d, out: Path, source: str) -> None:
     fig, ax = plt.subplots(figsize=(9, 4.8), dpi=120)
     ax.plot(t[c.peak_i], x[c.peak_i], "o", ms=3, color="C1", label="record: peak")
     ax.plot(t[c.trough_i], x[c.trough_i], "o", ms=3, color="C2", label="record: trough")
-    if d.baseline is not None:
-        ax.axhline(d.baseline.fs, color="C1", lw=0.8, ls="--", label="baseline static limit FS")
+    xb = d.plot.get("x_base")
+    if xb is not None:
+        from .baseline import pr_like
+        from .segment import find_cycles
+
+        cb = find_cycles(pr_like(pr, xb), fn)
+        ax.plot(t[cb.peak_i], xb[cb.peak_i], "x", ms=4, color="C1", label="baseline: peak")
+        ax.plot(t[cb.trough_i], xb[cb.trough_i], "x", ms=4, color="C2", label="baseline: trough")
+    ax.axvline(d.plot["tsplit"], color="0.5", ls="--", lw=0.8)
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("x (mm)")
-    ax.set_title("Cycle by cycle: peaks and troughs (what a constant model must hold level)")
+    ax.set_title("Cycle by cycle: peaks and troughs, record (o) against the baseline (x)")
     finish(fig, ax, cap, out / "residuals.png")
