@@ -69,8 +69,11 @@ class Params:
     drv_a: float = 0.0             # vd *= 1 + a sin(2 pi f t + ph)
     drv_f: float = 0.0
     drv_ph: float = 0.0
-    drift: float = 0.0             # friction level drift per second (mm/s), about the record's middle
+    drift: float = 0.0             # friction level: load *= 1 + drift (t - drift_t0)
     drift_t0: float = 0.0
+    level_a: float = 0.0           # ... * (1 + level_a sin(2 pi level_f travel + level_ph)), travel in mm
+    level_f: float = 0.0
+    level_ph: float = 0.0
     trig_ax: float = 0.0           # the triggering line superposed on x: ax sin(2 pi f t + phx)
     trig_phx: float = 0.0
     trig_ay: float = 0.0           # and on the normal channel: ay sin(2 pi f t + phy)
@@ -139,6 +142,8 @@ def simulate(pr: Prepared, p: Params, fn: float, ylow=None, x0=None):
             load = load * (1.0 + p.trig_eps * _sin(t, p.trig_f, p.trig_ph))
         if p.drift:
             load = load * (1.0 + p.drift * (t - p.drift_t0))
+        if p.level_a and pr.pos is not None:
+            load = load * (1.0 + p.level_a * np.sin(2 * math.pi * p.level_f * pr.pos[sl] + p.level_ph))
         load = np.maximum(load, 0.05)
         start = float(pr.x[sl][0] if x0 is None else x0[k])
         x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta,

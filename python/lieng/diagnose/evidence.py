@@ -39,8 +39,11 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     test (under a constant drive the sticks are exchangeable), so scatter
     without a period is not a modulation.
 ``friction_drift``
-    The trend of the friction level (mean of peak and trough per cycle)
-    with time, over the record, over D (two-sided).
+    The friction level (mean of peak and trough per cycle) fitted by a
+    linear trend in time plus the sinusoid in the drive's travel that
+    explains most (periods from the record's travel down to four cycles'):
+    the range of the fitted curve over D (a level that drifts or wanders
+    with time or travel).
 ``direction_asymmetry``
     With strokes in both directions: the difference of the median peak
     between forward and backward strokes, over D (two-sided).
@@ -71,7 +74,7 @@ __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "statistics", "lowpass"]
 CANDIDATES = ("load_variation", "twin_branch", "static_ageing", "triggering", "drive_modulation",
               "friction_drift", "direction_asymmetry", "creep", "position_dependence")
 #: effects with a direction: only a positive statistic counts
-ONE_SIDED = {"twin_branch", "static_ageing", "triggering", "drive_modulation", "creep"}
+ONE_SIDED = {"twin_branch", "static_ageing", "triggering", "drive_modulation", "creep", "friction_drift"}
 #: the smallest effect size this report calls physically relevant (position
 #: dependence: the range of the friction along the track, 10 % of the drop) (stated
 #: a priori from the thesis and common tribometry, not fitted to data):
@@ -311,19 +314,60 @@ def _creep(pr: Prepared, c: Cycles):
     return est(np.ones(n, bool)), _jackknife(est, n)
 
 
-def _drift(pr: Prepared, c: Cycles):
-    if c.n < 5:
-        return 0.0, math.inf
+def level_fit(tt, pos, lvl, f=None):
+    """The friction level per cycle as a linear trend in time plus a sinusoid
+    in the drive's travel: (range of the fitted curve, coefficients
+    [mean, slope, sin, cos], frequency per mm of travel).  Without ``f`` the
+    frequency is scanned from one period over the record to one over four
+    cycles (the one explaining most)."""
+    tt0 = tt - tt.mean()
+    span = float(np.ptp(pos))
+    if span <= 0 or lvl.size < 8:
+        X = np.column_stack([np.ones(tt.size), tt0])
+        co = np.linalg.lstsq(X, lvl, rcond=None)[0]
+        return float(np.ptp(X @ co)), np.r_[co, 0.0, 0.0], 0.0
+    if f is None:
+        freqs = np.linspace(1.0 / span, lvl.size / (4.0 * span), min(200, max(10, lvl.size)))
+        best = None
+        for fr in freqs:
+            X = np.column_stack([np.ones(tt.size), tt0, np.sin(2 * math.pi * fr * pos), np.cos(2 * math.pi * fr * pos)])
+            co, res, _, _ = np.linalg.lstsq(X, lvl, rcond=None)
+            r = float(np.sum((lvl - X @ co) ** 2))
+            if best is None or r < best[0]:
+                best = (r, fr)
+        f = best[1]
+    X = np.column_stack([np.ones(tt.size), tt0, np.sin(2 * math.pi * f * pos), np.cos(2 * math.pi * f * pos)])
+    co = np.linalg.lstsq(X, lvl, rcond=None)[0]
+    return float(np.ptp(X @ co)), co, float(f)
+
+
+def _drift(pr: Prepared, c: Cycles, nperm: int = 199):
+    if c.n < 8:
+        return 0.0, math.inf, 0.0, None
     lvl = 0.5 * (pr.x[c.peak_i] + pr.x[c.trough_i])
     tt = pr.t[c.peak_i]
-    span = float(tt.max() - tt.min())
-    if not span > 0:
-        return 0.0, math.inf
-    X = np.column_stack([np.ones(tt.size), tt - tt.mean()])
-    coef = np.linalg.lstsq(X, lvl, rcond=None)[0]
-    # the level's own scatter is correlated from cycle to cycle: a jackknife over blocks of cycles
-    est = lambda keep: float(np.polyfit(tt[keep], lvl[keep], 1)[0] * span) if np.count_nonzero(keep) > 3 else np.nan
-    return float(coef[1] * span), _jackknife(est, tt.size)
+    pos = pr.pos[c.peak_i] if pr.pos is not None else tt
+    if not np.ptp(tt) > 0:
+        return 0.0, math.inf, 0.0, None
+    rng, co, f = level_fit(tt, pos, lvl)
+    # calibrated within the record: the share of the levels' variance the
+    # best trend + sinusoid explains, against the same scan on the cycles'
+    # levels shuffled (under a constant level they are exchangeable)
+    g = np.random.default_rng(0)
+    R = np.column_stack([lvl] + [g.permutation(lvl) for _ in range(nperm)])
+    R = R - R.mean(axis=0)
+    tot = np.sum(R * R, axis=0)
+    span = float(np.ptp(pos))
+    t0 = tt - tt.mean()
+    freqs = np.linspace(1.0 / span, lvl.size / (4.0 * span), min(200, max(10, lvl.size))) if span > 0 else []
+    best = np.zeros(R.shape[1])
+    for fr in freqs:
+        Q, _ = np.linalg.qr(np.column_stack([np.ones(tt.size), t0, np.sin(2 * math.pi * fr * pos),
+                                             np.cos(2 * math.pi * fr * pos)]))
+        Pj = Q[:, 1:].T @ R
+        best = np.maximum(best, np.sum(Pj * Pj, axis=0) / np.where(tot > 0, tot, 1.0))
+    p = float((1 + np.count_nonzero(best[1:] >= best[0])) / (nperm + 1))
+    return rng, 0.0, f, p
 
 
 def _asymmetry(pr: Prepared, c: Cycles):
@@ -416,16 +460,17 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> 
     st["triggering"], se["triggering"] = v, e
     v, e, p_drv, f_drv = _drive(pr, c, fn)
     st["drive_modulation"], se["drive_modulation"] = v, e
-    v, e = _drift(pr, c)
+    v, e, f_lvl, p_lvl = _drift(pr, c)
     st["friction_drift"], se["friction_drift"] = v / D, e / D
     v, e = _asymmetry(pr, c)
     st["direction_asymmetry"], se["direction_asymmetry"] = v / D, e / D
     st["creep"], se["creep"] = _creep(pr, c)
     v, e, p_pos = _position(pr, c)
     st["position_dependence"], se["position_dependence"] = v / D, e
-    aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "y_is_force": y_is_force, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
+    aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "y_is_force": y_is_force, "f_level": f_lvl, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
            # statistics calibrated within the record (a permutation test), not by the baseline's replicates
-           "p_own": {k: v for k, v in (("drive_modulation", p_drv), ("position_dependence", p_pos)) if v is not None}, "gof": goodness(pr, c, fn, D)}
+           "p_own": {k: v for k, v in (("drive_modulation", p_drv), ("position_dependence", p_pos),
+                                       ("friction_drift", p_lvl)) if v is not None}, "gof": goodness(pr, c, fn, D)}
     return st, se, aux
 
 

@@ -32,7 +32,7 @@ import numpy as np
 
 from ..errors import LiengInputError
 from .baseline import Params, fit_baseline, model_y, pr_like, simulate, slip_friction
-from .evidence import _stick_series, drive_scan, lowpass
+from .evidence import _stick_series, drive_scan, level_fit, lowpass
 from .segment import Cycles, Prepared, find_cycles
 
 __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
@@ -268,11 +268,15 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
     elif effect == "friction_drift":
         lvl_c = 0.5 * (pr.x[c.peak_i] + pr.x[c.trough_i])
         tt = pr.t[c.peak_i]
-        if ctr_sel.sum() >= 4:
-            slope = float(np.polyfit(tt[ctr_sel], lvl_c[ctr_sel], 1)[0])
+        pos = pr.pos[c.peak_i] if pr.pos is not None else tt
+        if ctr_sel.sum() >= 6:
+            _, co, f = level_fit(tt[ctr_sel], pos[ctr_sel], lvl_c[ctr_sel], aux.get("f_level") or None)
+            mean = max(abs(float(co[0])), 1e-12)
             t0 = float(np.mean(tt[ctr_sel]))
+            amp, ph = float(math.hypot(co[2], co[3])), float(math.atan2(co[3], co[2]))
             for sc in (0.7, 1.0, 1.3):
-                out.append(base.copy(drift=sc * slope / Fbar, drift_t0=t0))
+                out.append(lvl(base.copy(drift=sc * float(co[1]) / mean, drift_t0=t0, level_a=sc * amp / mean,
+                                         level_f=f, level_ph=ph)))
     elif effect == "creep":
         for sc in (1.0, 2.0, 4.0):
             out.append(lvl(base.copy(creep1=float(np.clip(sc * st["creep"], 0.0, 0.9)))))
@@ -320,7 +324,7 @@ def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: 
 
 #: the parameter each extension scales (refined on the training error)
 SCALED = {"twin_branch": ("delta",), "load_variation": ("load_k", "load_kx"), "static_ageing": ("age_a",),
-          "triggering": ("trig_eps",), "drive_modulation": ("drv_a",), "friction_drift": ("drift",),
+          "triggering": ("trig_eps",), "drive_modulation": ("drv_a",), "friction_drift": ("drift", "level_a"),
           "creep": ("creep1",)}
 
 
