@@ -4,8 +4,10 @@ simulator its extensions share.
 The baseline is the 1-DoF model of ch. 2.3: a dynamometer of natural
 frequency fn, a **single-valued characteristic of general shape** phi(s) of
 the sliding velocity s = v0 - x', a static limit FS, the small relative
-velocity in stick of ch. 2.3.1.1 (the stick velocity a fraction 1 - c0 of
-the drive), constant load and drive, started from the record's own state at
+velocity in stick of ch. 2.3.1.1 (the stick velocity a fraction
+1 - c0 - c1 r**4 of the drive, r the spring force over the static limit: the
+stick branch is a steep line of finite slope, so the slider creeps more as
+the force nears the limit), constant load and drive, started from the record's own state at
 the start of every stroke.  It is identified from the record:
 
 * phi by the **reverse construction pooled over slips**: during slip the
@@ -223,18 +225,31 @@ def characteristic(s, F, nbins: int = NBINS):
     return sg[keep], fg[keep]
 
 
-def stick_creep(pr: Prepared, c: Cycles) -> float:
-    """The relative velocity in stick as a fraction of the drive (c0): one
-    minus the median over sticks of the slope of x in the stick's middle
-    half over the drive there; 0 when it does not differ from 0 by more
-    than its scatter."""
+def stick_creep(pr: Prepared, c: Cycles) -> tuple:
+    """The relative velocity in stick (ch. 2.3.1.1): (c0, c1) of the stick
+    velocity vd (1 - c0 - c1 r**4), r = x / limit.  c0 is one minus the median
+    stick slope over the drive in the stick's middle half; c1 from the slope
+    in the last fifth of the rise against the middle (r**4 goes from about
+    0.04 to 0.66 between them); each 0 unless it exceeds three times its
+    scatter."""
     r = stick_ratios(pr, c, (0.25, 0.75))[1]
-    if len(r) < 3:
-        return 0.0
-    r = np.asarray(r)
+    if r.size < 3:
+        return 0.0, 0.0
     c0 = 1.0 - float(np.median(r))
     se = 1.2533 * float(np.std(r)) / math.sqrt(r.size)
-    return float(np.clip(c0, 0.0, 0.5)) if abs(c0) > 3 * se else 0.0
+    c0 = float(np.clip(c0, 0.0, 0.5)) if abs(c0) > 3 * se else 0.0
+    mid = stick_ratios(pr, c, (0.3, 0.6))[1]
+    late = stick_ratios(pr, c, (0.8, 0.97))[1]
+    n = min(mid.size, late.size)
+    c1 = 0.0
+    if n >= 4:
+        d = 1.0 - late[:n] / np.where(mid[:n] != 0, mid[:n], np.nan)
+        d = d[np.isfinite(d)]
+        if d.size >= 4:
+            m, e = float(np.median(d)), 1.2533 * float(np.std(d)) / math.sqrt(d.size)
+            if m > 3 * e:
+                c1 = float(np.clip(m / 0.62 * (1.0 - c0), 0.0, 0.9))
+    return c0, c1
 
 
 def trough_mean(pr, c_fn, x):
@@ -265,7 +280,8 @@ def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6) -> Params:
     if 1.0 / (fn * pr.dt) < RESOLVED:
         sg, fg = np.array([0.0]), np.array([float(np.median(F)) if F.size else float(np.median(pr.x))])
     fs = float(np.median(pr.x[c.peak_i]))
-    p = Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=stick_creep(pr, c))
+    c0, c1 = stick_creep(pr, c)
+    p = Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1)
     target = float(np.mean(pr.x[c.trough_i]))
     # move the level of phi until the simulated mean trough matches
     lo_off, hi_off = None, None
