@@ -322,10 +322,14 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                   "within its noise" + (f" (smallest p: {best}, {rows[best]['p']:.2g})" if best else ""))
     if nrep < 10:
         warnings.append(f"only {nrep} baseline replicates could be analysed: the calibration is coarse")
+    creep = {"creep_before_slip": {"record": st["creep"], "record_se": se["creep"],
+                                   "meaning": "1 - stick velocity in the last fifth of the rise / in its middle",
+                                   "baseline_c0": base.creep0, "baseline_c1": base.creep1}}
     gof = {k: {"record": aux["gof"][k],
                                    "replicates_mean": float(np.mean(null[k])) if null[k].size else None,
                                    "replicates_sd": float(np.std(null[k])) if null[k].size > 1 else None}
                                for k in aux["gof"]}
+    gof.update(creep)
     return Diagnosis(effect=effect, reason=reason, effects=effects, evidence=_finite(rows), goodness=_finite(gof),
                      fn=fn_used, fn_source=src,
                      fn_data=fd, fn_data_se=fse, baseline=base, extended=primary_ext,

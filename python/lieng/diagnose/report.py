@@ -67,9 +67,16 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
                   "baseline's replicates; a departure beyond the replicates with no candidate named is "
                   "`unexplained`.", "", "| feature | record | replicates mean | replicates sd |", "|---|---|---|---|"]
         for k, g in d.goodness.items():
+            if "replicates_mean" not in g:
+                continue
             f = [("-" if g[a] is None else f"{g[a]:.4g}") for a in ("record", "replicates_mean", "replicates_sd")]
             lines.append(f"| {k} | {f[0]} | {f[1]} | {f[2]} |")
         lines.append("")
+    cr = d.goodness.get("creep_before_slip") if d.goodness else None
+    if cr and cr.get("record") is not None:
+        lines += [f"Creep before slip (part of the baseline's stick, ch. 2.3.1.1): the stick velocity in the last "
+                  f"fifth of each rise is {100 * cr['record']:.1f} % below its middle (+- "
+                  f"{100 * (cr['record_se'] or 0):.1f} %).", ""]
     if d.sliding and d.sliding.get("levels_mm"):
         lv = [v for v in d.sliding["levels_mm"] if v is not None]
         tr = [v for v in d.sliding["presliding_travel_mm"] if v is not None]
