@@ -123,12 +123,17 @@ def run_one(truth):
         eff, g = d.effect, d.gain
         named = [e["effect"] for e in d.effects]
         err = None
+        detail = {"evidence": {k: {q: r.get(q) for q in ("statistic", "null_mean", "null_sd", "se", "z", "p",
+                                                          "effect_size", "named", "withheld")}
+                               for k, r in d.evidence.items()},
+                  "warnings": d.warnings, "fn_used": d.fn, "fn_source": d.fn_source, "cycles": d.n_cycles,
+                  "effects": d.effects, "goodness": d.goodness}
     except LiengInputError as e:
-        eff, g, named, err = "error", 0.0, [], str(e)
+        eff, g, named, err, detail = "error", 0.0, [], str(e), {}
     except Exception as e:  # noqa: BLE001 - a crash is a result here
-        eff, g, named, err = "crash", 0.0, [], f"{type(e).__name__}: {e}"
+        eff, g, named, err, detail = "crash", 0.0, [], f"{type(e).__name__}: {e}", {}
     return {"effect": eff, "gain": g if math.isfinite(g) else None, "named": named, "error": err,
-            "seconds": time.perf_counter() - t0}
+            "seconds": time.perf_counter() - t0, "detail": detail}
 
 
 def table(results, gen):
@@ -177,9 +182,15 @@ def main(argv=None):
                     nu = NUISANCES[seed % len(NUISANCES)]
                     d = Path(tmp) / f"{gname}_{case}_{seed}"
                     d.mkdir()
-                    truth = g.write_record(case, seed, str(d), nu)
+                    try:
+                        truth = g.write_record(case, seed, str(d), nu)
+                    except Exception as e:  # noqa: BLE001 - the generator's failure, not the diagnosis'
+                        print(f"{gname:>12} {case:>17} seed {seed}: generator failed: {type(e).__name__}: {e}",
+                              file=sys.stderr, flush=True)
+                        continue
                     r = run_one(truth)
-                    r.update(generator=gname, case=case, seed=seed, nuisance=truth.get("nuisance", nu))
+                    r.update(generator=gname, case=case, seed=seed, nuisance=truth.get("nuisance", nu),
+                             args=truth.get("args"), fn_true=truth.get("fn_true"))
                     results.append(r)
                     mark = "ok" if (case == "none" and r["effect"] == "none") or \
                         (case == r["effect"] and (r["gain"] or 0) >= 0.3) else "MISS"

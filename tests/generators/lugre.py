@@ -399,15 +399,31 @@ def _fmt_col(vals, sig=7):
 
 
 def write_record(case: str, seed: int, outdir: str, nuisance: str = "clean") -> dict:
+    """Write one record (see the module docstring); a draw whose final record does not show enough stick-slip
+    cycles is redrawn (deterministically)."""
+    for attempt in range(6):
+        try:
+            return _write_record(case, seed, outdir, nuisance, attempt)
+        except _Redraw:
+            continue
+    raise RuntimeError("no usable record for %s seed %d" % (case, seed))
+
+
+class _Redraw(Exception):
+    pass
+
+
+def _write_record(case, seed, outdir, nuisance, attempt):
     if case not in CASES:
         raise ValueError("unknown case %r" % (case,))
     if nuisance not in NUISANCES:
         raise ValueError("unknown nuisance %r" % (nuisance,))
     seed = int(seed)
     ci, ni = CASES.index(case), NUISANCES.index(nuisance)
-    rng = np.random.default_rng([seed, 4242, ci])
-    rng_fmt = np.random.default_rng([seed, 77, ci])
-    rng_nz = np.random.default_rng([seed, 91, ci, ni])
+    extra = [attempt] if attempt else []
+    rng = np.random.default_rng([seed, 4242, ci] + extra)
+    rng_fmt = np.random.default_rng([seed, 77, ci] + extra)
+    rng_nz = np.random.default_rng([seed, 91, ci, ni] + extra)
 
     stepped = case == "static_ageing" or (case == "none" and rng.random() < 0.5)
     holds = 0
@@ -493,6 +509,8 @@ def write_record(case: str, seed: int, outdir: str, nuisance: str = "clean") -> 
         for it in range(4):
             St = _simulate(P, Drive(v0n), Sb["t"], -1.0 / fss, "twin_branch")
             smt = _summary(St, fn)
+            if smt is None:
+                raise _Redraw()
             dd = _twin_metric(St, smt["slips"]) / (smt["drop"] * k)
             if abs(dd - target) < 0.02:
                 break
@@ -529,6 +547,8 @@ def write_record(case: str, seed: int, outdir: str, nuisance: str = "clean") -> 
 
     S = run(case)
     smS = _summary(S, fn)
+    if smS is None:
+        raise _Redraw()
 
     if case == "load_variation":
         for it in range(2):
@@ -538,6 +558,8 @@ def write_record(case: str, seed: int, outdir: str, nuisance: str = "clean") -> 
             P["load_c"] *= params["load_pp_target_frac"] / pp
             S = run(case)
             smS = _summary(S, fn)
+            if smS is None:
+                raise _Redraw()
         params.update({"load_c_per_mm": P["load_c"] * 1e-3, "load_xmean_mm": P["load_xmean"] * 1e3,
                        "load_pp_measured_frac": _load_pp(S, smS)})
     if case == "static_ageing":
@@ -548,11 +570,15 @@ def write_record(case: str, seed: int, outdir: str, nuisance: str = "clean") -> 
             P["age_beta"] *= params["age_target_growth"] / max(gr, 0.01)
             S = run(case)
             smS = _summary(S, fn)
+            if smS is None:
+                raise _Redraw()
         params.update({"age_beta": P["age_beta"], "age_growth_measured": _age_growth(S, smS, P["age_tau"])})
     if case == "twin_branch":
         params["twin_measured_frac_of_drop"] = _twin_metric(S, smS["slips"]) / (smS["drop"] * k)
 
     # --- measured quantities of the final record ----------------------------------------------------------
+    if smS is None or len(smS["cyc"]) < 8 or not smS["allstop"] or np.min(smS["dropfrac"]) < 0.1:
+        raise _Redraw()          # the final record must itself show real stick-slip (e.g. triggering can quench it)
     params.update({"n_cycles_measured": len(smS["cyc"]), "drop_frac_min": float(np.min(smS["dropfrac"])),
                    "drop_frac_max": float(np.max(smS["dropfrac"])), "drop_mm": smS["drop"] * 1e3,
                    "peak_mm": smS["peak"] * 1e3, "fss_measured_Hz": smS["fss"],

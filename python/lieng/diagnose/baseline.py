@@ -281,7 +281,25 @@ def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6) -> Params:
         sg, fg = np.array([0.0]), np.array([float(np.median(F)) if F.size else float(np.median(pr.x))])
     fs = float(np.median(pr.x[c.peak_i]))
     c0, c1 = stick_creep(pr, c)
-    p = Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1)
+    p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1), iters)
+    if (c0 or c1) and _cycles_of(pr, p, fn) < min(3, c.n):
+        # a creeping stick that never reaches the static limit is no stick-slip model: the thesis's
+        # rigid stick (finite slope only in the sense of ch. 2.3.1.1's steep line) instead
+        p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs)), iters)
+    return p
+
+
+def _cycles_of(pr, p, fn) -> int:
+    from .segment import find_cycles
+
+    xs, _, _ = simulate(pr, p, fn)
+    return find_cycles(pr_like(pr, xs), fn).n
+
+
+def _fit_level(pr, c, fn, p, iters):
+    """Move the level of phi until the simulated mean trough matches the record's."""
+    fg = p.fg.copy()
+    fs = p.fs
     target = float(np.mean(pr.x[c.trough_i]))
     # move the level of phi until the simulated mean trough matches
     lo_off, hi_off = None, None
