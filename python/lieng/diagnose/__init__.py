@@ -250,9 +250,10 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     # oscillation at fn: withheld when they are not (heavily damped or
     # rate-dependent slips, or an fn far off)
     withheld = {}
-    if nsl >= 3 and (fd is None or abs(fd / fn_used - 1.0) > 0.25):
-        why = ("the slips are not arcs of a free oscillation at any frequency near fn" if fd is None else
-               f"the slips swing at {fd:.4g} Hz, not near fn = {fn_used:.4g} Hz")
+    # (slips that fit no single arc frequency, with fn given, are read as they are: the evidence
+    # assumes no arc shape, and the replicates carry what the shape does to it)
+    if nsl >= 3 and fd is not None and abs(fd / fn_used - 1.0) > 0.25:
+        why = f"the slips swing at {fd:.4g} Hz, not near fn = {fn_used:.4g} Hz"
         withheld = {"twin_branch": why, "load_variation": why}
         warnings.append(why + ": the slip-shape evidence (twin_branch, load_variation) is withheld")
     if 1.0 / (fn_used * pr.dt) < 15:
@@ -264,9 +265,11 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     base_all = fit_baseline(pr, c, fn_used)
     if pr.y is not None:
         base_all.y_c = y_on_motion(pr.x, c.v, pr.y)
-    st, se, aux = statistics(pr, c, fn_used, y_is_force=rec.y_is_force)
+    # the slips are arcs of a free oscillation near fn when their own frequency was found within 25 % of it
+    arcs = fd is not None and abs(fd / fn_used - 1.0) <= 0.25
+    st, se, aux = statistics(pr, c, fn_used, y_is_force=rec.y_is_force, arcs=arcs)
     null, nrep = null_replicates(pr, base_all, fn_used, u_fn, B=replicates, budget=budget, progress=progress,
-                                 y_is_force=rec.y_is_force)
+                                 y_is_force=rec.y_is_force, arcs=arcs)
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld)
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
@@ -281,7 +284,9 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     effects = []
     fitted = {}
     for k in named:
-        cands = candidates(k, base, pr, c, fn_used, st, aux, tsplit)
+        # the extension starts from the effect's size over the baseline's replicates (the statistic less
+        # what the baseline itself gives), not from the raw statistic
+        cands = candidates(k, base, pr, c, fn_used, {**st, k: rows[k]["effect_size"]}, aux, tsplit)
         e_train0 = train.error(base)[0]
         ext, e_tr = base, e_train0
         if cands:

@@ -57,7 +57,7 @@ def _norm_ppf(p):
 
 
 def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int = 39, budget: float = 25.0,
-                    seed: int = 0, progress=None, y_is_force: bool = False):
+                    seed: int = 0, progress=None, y_is_force: bool = False, arcs: bool = True):
     """The candidates' statistics on B baseline replicates (module docstring).
 
     Returns a dict name -> array of the replicates' values, and the
@@ -84,7 +84,7 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
             c = find_cycles(q, fn)
             if c.n < 3:
                 continue
-            st, _, aux = statistics(q, c, fn, y=yb, y_is_force=y_is_force)
+            st, _, aux = statistics(q, c, fn, y=yb, y_is_force=y_is_force, arcs=arcs)
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             continue
         st.update(aux["gof"])

@@ -7,12 +7,19 @@ cycles, so that cycle-to-cycle variation of a real record counts as noise).
 Their distributions under the fitted baseline come from :mod:`.decide`.
 
 ``twin_branch``
-    The step of the friction between the accelerating and decelerating
-    halves of the slips, fitted to x itself: in each slip
+    When the slips are arcs of a free oscillation near fn (their frequency
+    found within 25 % of it): the step of the friction between the
+    accelerating and decelerating halves fitted to x itself: in each slip
     x = c + A cos(wn t) + B sin(wn t) + dF (1 - cos(wn (t - t*))) H(t - t*),
     t* where the sliding speed peaks; c, A, B per slip, dF common (linear
-    least squares slip by slip: no derivatives).  dF / D, one-sided (the
-    decelerating branch above, ch. 4.1).
+    least squares slip by slip: no derivatives); dF / D.  Otherwise the two
+    branches of the characteristic read as the thesis read them
+    (ch. 4.1, TRC's reverse construction): in each slip F = x + x''/wn**2
+    against the sliding speed s, the decelerating branch minus the
+    accelerating one at equal s (between a quarter and three quarters of the
+    slip's peak speed), averaged; the median over slips over D, one-sided
+    (the decelerating branch above).  Smoothed within each slip only
+    (:func:`slip_reverse_construction`), so no arc shape is assumed.
 ``load_variation``
     The reverse construction F = x + x''/wn**2 in the slips regressed on a
     cubic in the sliding velocity, the branch and the low-passed normal
@@ -121,7 +128,44 @@ def _jackknife(values_fn, n_units, groups=10):
     return float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
 
 
-def _twin(pr: Prepared, c: Cycles, fn: float):
+def slip_reverse_construction(pr: Prepared, c: Cycles, fn: float, k: int):
+    """The reverse construction inside slip k alone (TRC's XX, ch. 4.1):
+    (s, F) from the peak to where the slider sticks again (the sliding speed
+    back below 2 % of its peak, at the latest the next peak), smoothed within
+    the slip only (Savitzky-Golay over a quarter natural period, its ends
+    fitted inside the slip: the kink where the stick ends is not smeared into
+    the slip) and F = x + x''/wn**2 with the filter's own attenuation at fn
+    divided out.  None when the slip has too few samples."""
+    from scipy.signal import savgol_coeffs, savgol_filter
+
+    w = 2 * math.pi * fn
+    win = max(int(round(0.25 / fn / pr.dt)) | 1, 7)
+    p0, tr = int(c.peak_i[k]), int(c.trough_i[k])
+    end = int(c.peak_i[k + 1]) if k + 1 < c.n and c.stroke[k + 1] == c.stroke[k] else pr.x.size - 1
+    sl = pr.strokes[int(c.stroke[k])]
+    end = min(end, sl.j0 + sl.n - 1)
+    s_all = pr.vd - c.v
+    sp = float(np.max(s_all[p0:tr + 1])) if tr >= p0 else 0.0
+    if not sp > 0:
+        return None
+    e = tr
+    while e < end and s_all[e] > 0.02 * sp:
+        e += 1
+    x = pr.x[p0:e + 1]
+    if x.size < win + 3:
+        return None
+    tt = (np.arange(win) - win // 2) * pr.dt
+    g0 = float(savgol_coeffs(win, 3, 0, pr.dt, use="dot") @ np.cos(w * tt))
+    g2 = -float(savgol_coeffs(win, 3, 2, pr.dt, use="dot") @ np.cos(w * tt)) / w ** 2
+    if not g2 > 0.05:
+        return None
+    xs = savgol_filter(x, win, 3, mode="interp")
+    v = savgol_filter(x, win, 3, deriv=1, delta=pr.dt, mode="interp")
+    a = savgol_filter(x, win, 3, deriv=2, delta=pr.dt, mode="interp")
+    return pr.vd[p0:e + 1] - v, xs + (g0 / g2) * a / w ** 2
+
+
+def _twin_arcs(pr: Prepared, c: Cycles, fn: float):
     w = 2 * math.pi * fn
     num, den = [], []
     for tt, xx, ts in slip_arcs(pr, c):
@@ -139,6 +183,30 @@ def _twin(pr: Prepared, c: Cycles, fn: float):
         return 0.0, math.inf
     est = lambda keep: float(np.sum(num[keep]) / np.sum(den[keep])) if np.sum(den[keep]) > 0 else np.nan
     return est(np.ones(num.size, bool)), _jackknife(est, num.size)
+
+
+def _twin_rc(pr: Prepared, c: Cycles, fn: float, lo: float = 0.25, hi: float = 0.75):
+    diffs = []
+    for k in range(c.n):
+        r = slip_reverse_construction(pr, c, fn, k)
+        if r is None:
+            continue
+        s, F = r
+        ip = int(np.argmax(s))
+        sp = float(s[ip])
+        if ip < 3 or s.size - ip < 4 or not sp > 0:
+            continue
+        g = np.linspace(lo * sp, hi * sp, 9)
+        sa, Fa, sd, Fd = s[:ip + 1], F[:ip + 1], s[ip:], F[ip:]
+        if sa.min() > g[0] or sd.min() > g[0]:
+            continue
+        oa, od = np.argsort(sa), np.argsort(sd)
+        diffs.append(float(np.mean(np.interp(g, sd[od], Fd[od]) - np.interp(g, sa[oa], Fa[oa]))))
+    diffs = np.asarray(diffs)
+    if diffs.size < 3:
+        return 0.0, math.inf
+    est = lambda keep: float(np.median(diffs[keep])) if np.any(keep) else np.nan
+    return est(np.ones(diffs.size, bool)), _jackknife(est, diffs.size)
 
 
 def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
@@ -446,16 +514,20 @@ def _position(pr: Prepared, c: Cycles):
     return rng, 0.0, p
 
 
-def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False) -> tuple[dict, dict, dict]:
+def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arcs: bool = True
+               ) -> tuple[dict, dict, dict]:
     """Every candidate's effect size and its standard error from the record's
     own scatter, and auxiliary values (D, the triggering line's frequency,
-    the low-passed normal channel).  ``y`` overrides ``pr.y``."""
+    the low-passed normal channel).  ``y`` overrides ``pr.y``; ``arcs``: the
+    record's slips are arcs of a free oscillation near fn (the twin step is
+    then fitted to x itself, otherwise read from the reverse construction;
+    a record and its replicates are read the same way)."""
     y = pr.y if y is None else y
     D = c.amplitude(pr.x)
     D = D if D > 0 else 1.0
     st, se = {}, {}
     ylow = lowpass(y, pr.dt, 1.5 * fn) if y is not None else None
-    v, e = _twin(pr, c, fn)
+    v, e = _twin_arcs(pr, c, fn) if arcs else _twin_rc(pr, c, fn)
     st["twin_branch"], se["twin_branch"] = v / D, e / D
     v, e, yspan = _load(pr, c, fn, ylow, y, y_is_force)
     st["load_variation"], se["load_variation"] = (v, e) if y_is_force else (v / D, e / D)

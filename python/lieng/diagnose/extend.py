@@ -7,12 +7,14 @@ nested extension (the baseline plus that one term) are fitted on the
 training part from the evidence's estimate and the best on the training
 error kept.
 
-**Metric** (does not contain any effect's own statistic): the RMS of the
-normalised differences between the record and a simulation on the held-out
-cycles of
+**Metric** (does not contain any effect's own statistic): on the held-out
+cycles, the RMS of the normalised differences between the record and a
+simulation on the same drive of
 
-* the mean and spread of the peak, the trough (over D), the period and the
-  rise time (over the mean period);
+* every cycle's peak and trough (over D) and period (over the mean period),
+  each record cycle against the simulated cycle nearest in time (what the
+  model predicts *when*: a modulated drive, ageing under a stepped drive, a
+  drift show here);
 * the mean slip waveform: x from each peak at 9 instants over 0.6 natural
   periods, less the peak, over D;
 * when the extension predicts a part of the normal channel that is not
@@ -38,8 +40,9 @@ from .segment import Cycles, Prepared, find_cycles
 __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 
 TRAIN = 0.7
-METRIC = ("RMS of normalised differences on the held-out cycles: mean and spread of peak and trough (/ drop D), "
-          "period and rise time (/ mean period); mean slip waveform at 9 instants over 0.6 natural periods (/ D); "
+METRIC = ("RMS of normalised differences on the held-out cycles: each cycle's peak and trough (/ drop D) and period "
+          "(/ mean period) against the simulated cycle nearest in time; mean slip waveform at 9 instants over 0.6 "
+          "natural periods (/ D); "
           "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in time "
           "(/ spread of y)")
 NWAVE = 9
@@ -68,32 +71,44 @@ def split(pr: Prepared, c: Cycles) -> float:
     return tsplit
 
 
-def _features(pr: Prepared, x, c: Cycles, sel, fn, D, P):
-    """The feature vector on the cycles ``sel``: a boolean mask over c's
-    cycles, or an index array (repeats allowed: a bootstrap sample)."""
-    sel = np.asarray(sel)
-    k = np.flatnonzero(sel) if sel.dtype == bool else sel
-    if k.size < 2:
-        return None
-    kn = k[c.next_ok[k]]
-    pk, tr = x[c.peak_i[k]], x[c.trough_i[k]]
-    per = pr.t[c.peak_i[kn + 1]] - pr.t[c.peak_i[kn]] if kn.size else np.array([np.nan])
-    rise = pr.t[c.peak_i[kn + 1]] - pr.t[c.trough_i[kn]] if kn.size else np.array([np.nan])
-    f = [np.mean(pk) / D, np.std(pk) / D, np.mean(tr) / D, np.std(tr) / D,
-         np.mean(per) / P, np.std(per) / P, np.mean(rise) / P, np.std(rise) / P]
+def _cycle_table(pr: Prepared, x, c: Cycles, sel, D, P):
+    """Per cycle of the mask ``sel``: (peak time, peak / D, trough / D,
+    period / P) (period NaN without a successor in the stroke)."""
+    k = np.flatnonzero(sel)
+    per = np.full(k.size, np.nan)
+    nx = c.next_ok[k]
+    per[nx] = (pr.t[c.peak_i[k[nx] + 1]] - pr.t[c.peak_i[k[nx]]]) / P
+    return np.column_stack([pr.t[c.peak_i[k]], x[c.peak_i[k]] / D, x[c.trough_i[k]] / D, per])
+
+
+def _wave(pr: Prepared, x, c: Cycles, sel, fn, D):
+    """The mean slip waveform: x from each peak at NWAVE instants over 0.6
+    natural periods, less the peak, over D."""
     tau = np.linspace(0.0, 0.6 / fn, NWAVE)
     waves = []
-    for j in k:
+    for j in np.flatnonzero(sel):
         tt = pr.t[c.peak_i[j]] + tau
         if tt[-1] > pr.t[-1]:
             continue
         waves.append(np.interp(tt, pr.t, x) - x[c.peak_i[j]])
-    w = np.mean(waves, axis=0) / D if waves else np.full(NWAVE, np.nan)
-    return np.r_[f, w]
+    return np.mean(waves, axis=0) / D if waves else np.full(NWAVE, np.nan)
+
+
+def _msq(a) -> float:
+    a = np.asarray(a, float)
+    a = a[np.isfinite(a)]
+    return float(np.mean(a * a)) if a.size else 0.0
 
 
 class Judge:
-    """The record's features on a part of it, and the error of a simulation there."""
+    """The record on a part of it, and the error of a simulation there.
+
+    The error compares, cycle by cycle, each of the record's cycles with the
+    simulated cycle nearest in time (its peak and trough over D, its period
+    over the mean period: what the model predicts *when*, so that a drive
+    modulation, an ageing under a stepped drive or a drift count), plus the
+    mean slip waveform; e = sqrt(mean of the per-cycle squares + mean of
+    the waveform's squares [+ the normal channel's unlocked part])."""
 
     def __init__(self, pr: Prepared, c: Cycles, fn: float, lo: float, hi: float, ylow=None):
         self.pr, self.fn, self.lo, self.hi, self.ylow = pr, fn, lo, hi, ylow
@@ -103,46 +118,60 @@ class Judge:
         self.D = c.amplitude(pr.x)
         per = c.periods(pr.t)
         self.P = float(np.mean(per)) if per.size else 1.0 / fn
-        self.meas = _features(pr, pr.x, c, self.sel, fn, self.D, self.P)
+        self.rec = _cycle_table(pr, pr.x, c, self.sel, self.D, self.P)
+        self.wave = _wave(pr, pr.x, c, self.sel, fn, self.D)
         self.mask = (pr.t >= lo) & (pr.t < hi)
         if pr.y is not None:
             ys = pr.y[self.mask]
             self.ysd = float(np.std(ys)) if ys.size > 2 and np.std(ys) > 0 else 1.0
 
     def vector(self, p: Params, with_y: bool = False):
-        """(record features, simulated features, simulated x) or None; the
-        normal channel's unlocked part is compared only ``with_y`` (when the
-        model predicts one: otherwise it is the same for every model and
-        would only dilute the comparison)."""
+        """(per-cycle differences (n, 3), waveform differences, [normal
+        channel term], simulated x) or None; the normal channel's unlocked
+        part is compared only ``with_y`` (when the model predicts one:
+        otherwise it is the same for every model and would only dilute the
+        comparison)."""
         pr = self.pr
+        if self.rec.shape[0] < 2:
+            return None
         xs, vs, _ = simulate(pr, p, self.fn, self.ylow)
         try:
             cs = find_cycles(pr_like(pr, xs), self.fn)
         except LiengInputError:
             return None
         tp = pr.t[cs.peak_i]
-        ssel = (tp >= self.lo) & (tp < self.hi)
-        fs = _features(pr, xs, cs, ssel, self.fn, self.D, self.P)
-        if fs is None or self.meas is None:
+        win = (tp >= self.lo - self.P) & (tp < self.hi + self.P)
+        if np.count_nonzero(win) < 2:
             return None
-        m, s = self.meas, fs
+        sim = _cycle_table(pr, xs, cs, win, self.D, self.P)
+        j = np.clip(np.searchsorted(sim[:, 0], self.rec[:, 0]), 1, sim.shape[0] - 1)
+        j = np.where(np.abs(sim[j - 1, 0] - self.rec[:, 0]) < np.abs(sim[j, 0] - self.rec[:, 0]), j - 1, j)
+        dc = self.rec[:, 1:] - sim[j, 1:]
+        inner = (tp >= self.lo) & (tp < self.hi)
+        dw = self.wave - _wave(pr, xs, cs, inner if np.any(inner) else win, self.fn, self.D)
+        ey = None
         if pr.y is not None and with_y:
             # the part of y not locked to the motion (locked to the clock: no phase drift), record against model
             c0, c1, c2 = p.y_c
             r_rec = pr.y - (c0 + c1 * pr.x + c2 * self.c.v)
             r_sim = model_y(pr, p, xs, vs) - (c0 + c1 * xs + c2 * vs)
             ey = float(np.sqrt(np.mean((r_rec[self.mask] - r_sim[self.mask]) ** 2))) / self.ysd
-            m, s = np.r_[m, 0.0], np.r_[s, ey]
-        return m, s, xs
+        return dc, dw, ey, xs
+
+    @staticmethod
+    def combine(dc, dw, ey, rows=None) -> float:
+        """The error from the parts (``rows``: the cycles used, repeats allowed)."""
+        d = dc if rows is None else dc[rows]
+        e2 = _msq(d) + _msq(dw) + (ey * ey if ey is not None else 0.0)
+        return float(math.sqrt(e2))
 
     def error(self, p: Params, with_y: bool = False):
         v = self.vector(p, with_y)
         if v is None:
             return math.inf, None
-        m, s, xs = v
-        d = m - s
-        d = d[np.isfinite(d)]
-        return (float(np.sqrt(np.mean(d ** 2))) if d.size else math.inf), xs
+        dc, dw, ey, xs = v
+        e = self.combine(dc, dw, ey)
+        return (e if math.isfinite(e) else math.inf), xs
 
 
 def _fit_level(pr, p: Params, fn, target, tr_mask, ylow=None, it=5):
@@ -291,35 +320,24 @@ def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: 
     with_y = bool(ext.trig_ay)
     vb = J.vector(base, with_y)
     ve = J.vector(ext, with_y) if ext is not base else vb
-    if vb is None or ve is None or J.meas is None:
+    if vb is None or ve is None:
         return dict(e0=0.0, e1=0.0, gain=0.0, interval=[0.0, 0.0], x_base=None, x_ext=None)
-
-    def err(m, s):
-        d = m - s
-        d = d[np.isfinite(d)]
-        return float(np.sqrt(np.mean(d ** 2))) if d.size else 0.0
-
-    e0, e1 = err(vb[0], vb[1]), err(ve[0], ve[1])
+    e0, e1 = J.combine(*vb[:3]), J.combine(*ve[:3])
     g = 1.0 - e1 / e0 if e0 > 0 else 0.0
-    # interval: resample the held-out cycles of the record (the simulations' features are fixed)
+    # interval: resample the held-out cycles (each with its matched simulated cycles)
     rng = np.random.default_rng(seed)
-    k = np.flatnonzero(J.sel)
+    n = vb[0].shape[0]
     gs = []
-    if k.size >= 3 and ext is not base:
+    if n >= 3 and ext is not base:
         for _ in range(nboot):
-            pick = np.sort(rng.choice(k, k.size))
-            m = _features(pr, pr.x, c, pick, fn, J.D, J.P)
-            if m is None:
-                continue
-            if pr.y is not None and with_y:
-                m = np.r_[m, 0.0]
-            a, b = err(m, vb[1]), err(m, ve[1])
+            pick = rng.integers(0, n, n)
+            a, b = J.combine(*vb[:3], rows=pick), J.combine(*ve[:3], rows=pick)
             if a > 0:
                 gs.append(1.0 - b / a)
     iv = [float(np.percentile(gs, 5)), float(np.percentile(gs, 95))] if len(gs) >= 20 else [g, g]
     g = float(np.clip(g, -1e6, 1.0))
-    return dict(e0=e0, e1=e1, gain=g, interval=[float(np.clip(v, -1e6, 1.0)) for v in iv], x_base=vb[2],
-                x_ext=ve[2])
+    return dict(e0=e0, e1=e1, gain=g, interval=[float(np.clip(v, -1e6, 1.0)) for v in iv], x_base=vb[3],
+                x_ext=ve[3])
 
 
 #: the parameter each extension scales (refined on the training error)
