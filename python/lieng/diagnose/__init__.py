@@ -33,6 +33,9 @@ FN_UNCERTAINTY = 0.05
 #: the relative uncertainty of fn read from the slips (measured on lieng synth
 #: records: -3 % to -13 % off, the slips' friction bending the arcs)
 FN_UNCERTAINTY_SLIPS = 0.10
+#: the slip-shape evidence (twin, load) is read only when the baseline's
+#: replicates last as long in slip as the record, within this fraction
+SLIP_MATCH = 0.10
 
 
 def _finite(v):
@@ -270,6 +273,17 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     st, se, aux = statistics(pr, c, fn_used, y_is_force=rec.y_is_force, arcs=arcs)
     null, nrep = null_replicates(pr, base_all, fn_used, u_fn, B=replicates, budget=budget, progress=progress,
                                  y_is_force=rec.y_is_force, arcs=arcs)
+    # the slip-shape evidence is calibrated by replicates whose slips are like the record's: where the
+    # baseline misses the slips' duration (by over SLIP_MATCH of it and 3.5 of its spread) it is withheld
+    dur, dn = aux["gof"]["slip_duration"], null.get("slip_duration", np.array([]))
+    dn = dn[np.isfinite(dn)]
+    if dn.size >= 5 and not withheld:
+        m0, s0 = float(np.mean(dn)), float(np.std(dn, ddof=1))
+        if abs(dur - m0) > max(SLIP_MATCH * m0, 3.5 * s0):
+            why = (f"the baseline does not reproduce the slips (they last {dur:.3g} half natural periods, its "
+                   f"replicates' {m0:.3g} +- {s0:.2g}): their shape cannot be calibrated")
+            withheld = {"twin_branch": why, "load_variation": why}
+            warnings.append(why + "; the slip-shape evidence (twin_branch, load_variation) is withheld")
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld)
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
