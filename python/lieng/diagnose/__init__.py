@@ -253,12 +253,15 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     # oscillation at fn: withheld when they are not (heavily damped or
     # rate-dependent slips, or an fn far off)
     withheld = {}
+    # a recorded normal force is read directly (its change locked to the motion), not through the slips'
+    # shape; a load that follows the motion also changes the slips' duration, so it is not withheld for it
+    shape_evidence = ("twin_branch",) if rec.y_is_force else ("twin_branch", "load_variation")
     # (slips that fit no single arc frequency, with fn given, are read as they are: the evidence
     # assumes no arc shape, and the replicates carry what the shape does to it)
     if nsl >= 3 and fd is not None and abs(fd / fn_used - 1.0) > 0.25:
         why = f"the slips swing at {fd:.4g} Hz, not near fn = {fn_used:.4g} Hz"
-        withheld = {"twin_branch": why, "load_variation": why}
-        warnings.append(why + ": the slip-shape evidence (twin_branch, load_variation) is withheld")
+        withheld = dict.fromkeys(shape_evidence, why)
+        warnings.append(why + f": the slip-shape evidence ({', '.join(shape_evidence)}) is withheld")
     if 1.0 / (fn_used * pr.dt) < 15:
         warnings.append(f"{1.0 / (fn_used * pr.dt):.1f} samples per natural period: the slip-shape evidence is "
                         f"weak below about 20")
@@ -282,8 +285,8 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
         if abs(dur - m0) > max(SLIP_MATCH * m0, 3.5 * s0):
             why = (f"the baseline does not reproduce the slips (they last {dur:.3g} half natural periods, its "
                    f"replicates' {m0:.3g} +- {s0:.2g}): their shape cannot be calibrated")
-            withheld = {"twin_branch": why, "load_variation": why}
-            warnings.append(why + "; the slip-shape evidence (twin_branch, load_variation) is withheld")
+            withheld = dict.fromkeys(shape_evidence, why)
+            warnings.append(why + f"; the slip-shape evidence ({', '.join(shape_evidence)}) is withheld")
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld)
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
