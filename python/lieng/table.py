@@ -45,19 +45,38 @@ class Table:
 _UNIT = re.compile(r"^\s*(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$")
 
 
-def _split_header(line: str):
+def _split_header(line: str, first_row: str | None = None):
+    """The separator and the header cells.  A whitespace-separated header may
+    have names of several words ("Tangential force [mN]"): the cells are then
+    the runs between two or more blanks, or each name with its unit, when
+    that gives as many cells as the first data row."""
     if "," in line:
         return ",", [c.strip() for c in line.split(",")]
     if "\t" in line:
         return "\t", [c.strip() for c in line.split("\t")]
     if ";" in line:
         return ";", [c.strip() for c in line.split(";")]
+    want = len(first_row.split()) if first_row and first_row.strip() else None
+    wide = [c for c in re.split(r"\s{2,}", line.strip()) if c]
+    if want is not None and len(wide) == want:
+        return None, wide
     cells = []
     for tok in line.split():
         if cells and tok[:1] in "[(" and not cells[-1].endswith(("]", ")")):
             cells[-1] += " " + tok            # "t [s]": the unit belongs to the name before it
         else:
             cells.append(tok)
+    if want is not None and len(cells) != want:
+        united, cur = [], []
+        for tok in line.split():
+            cur.append(tok)
+            if tok.endswith(("]", ")")):
+                united.append(" ".join(cur))
+                cur = []
+        if cur:
+            united.append(" ".join(cur))
+        if len(united) == want:
+            return None, united
     return None, cells
 
 
@@ -98,7 +117,8 @@ def read_table(path, expect: str) -> Table:
     k0 = next((k for k, r in enumerate(rows) if r.strip()), None)
     if k0 is None:
         raise LiengInputError(f"{path}: empty file: expected a header {expect}")
-    sep, head = _split_header(rows[k0])
+    first = next((r for r in rows[k0 + 1:] if r.strip()), None)
+    sep, head = _split_header(rows[k0], first)
     names, units = [], []
     for h in head:
         m = _UNIT.match(h)

@@ -39,7 +39,7 @@ from .. import _core
 from ..errors import LiengInputError
 from .segment import Cycles, Prepared, stick_ratios
 
-__all__ = ["Params", "simulate", "fit_baseline", "slip_friction", "model_y"]
+__all__ = ["Params", "simulate", "run_slice", "fit_baseline", "slip_friction", "model_y", "calibrate_fn"]
 
 #: quantile bins of the sliding velocity for the characteristic's table
 NBINS = 10
@@ -126,39 +126,49 @@ def simulate(pr: Prepared, p: Params, fn: float, ylow=None, x0=None):
     x, v, state : ndarray
         Displacement (mm), velocity (mm/s), 1 in stick / 0 in slip.
     """
-    dt = pr.dt
-    wn = 2 * math.pi * fn
-    nsub = max(4, int(math.ceil(dt * wn / 0.05)))
     xs, vs, ss = [], [], []
-    sg = np.ascontiguousarray(p.sg, float)
-    fg = np.ascontiguousarray(p.fg, float)
     for k, sl in enumerate(pr.stroke_slices()):
-        t = pr.t[sl]
-        vdd = pr.vd[sl].astype(float).copy()
-        if p.drv_a:
-            vdd = vdd * (1.0 + p.drv_a * _sin(t, p.drv_f, p.drv_ph))
-        load = np.ones_like(t)
-        if p.load_k and ylow is not None:
-            load = load + p.load_k * (ylow[sl] - np.mean(ylow))
-        if p.trig_eps:
-            load = load * (1.0 + p.trig_eps * _sin(t, p.trig_f, p.trig_ph))
-        if p.drift:
-            load = load * (1.0 + p.drift * (t - p.drift_t0))
-        if p.level_a and pr.pos is not None:
-            load = load * (1.0 + p.level_a * np.sin(2 * math.pi * p.level_f * pr.pos[sl] + p.level_ph))
-        load = np.maximum(load, 0.05)
         start = float(pr.x[sl][0] if x0 is None else x0[k])
-        x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta,
-                                                p.age_a, p.age_tau, p.load_kx, p.load_xref, p.creep0, p.creep1,
-                                                start)
-        if status != 0:
-            raise LiengInputError(f"the slider simulation failed (status {status}): check --fn and the record's units")
-        if p.trig_ax:
-            x = x + p.trig_ax * _sin(t, p.trig_f, p.trig_phx)
+        x, v, state = run_slice(pr, p, fn, sl, start, ylow)
         xs.append(x)
         vs.append(v)
         ss.append(state)
     return np.concatenate(xs), np.concatenate(vs), np.concatenate(ss)
+
+
+def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=None):
+    """The slider on the samples ``sl`` of the record's grid (within one
+    stroke), started in stick at the displacement ``start``: (x, v, state)."""
+    dt = pr.dt
+    if sl.stop - sl.start < 2:
+        n = max(sl.stop - sl.start, 0)
+        return np.full(n, float(start)), pr.vd[sl].astype(float), np.ones(n, np.int32)
+    wn = 2 * math.pi * fn
+    nsub = max(4, int(math.ceil(dt * wn / 0.05)))
+    sg = np.ascontiguousarray(p.sg, float)
+    fg = np.ascontiguousarray(p.fg, float)
+    t = pr.t[sl]
+    vdd = pr.vd[sl].astype(float).copy()
+    if p.drv_a:
+        vdd = vdd * (1.0 + p.drv_a * _sin(t, p.drv_f, p.drv_ph))
+    load = np.ones_like(t)
+    if p.load_k and ylow is not None:
+        load = load + p.load_k * (ylow[sl] - np.mean(ylow))
+    if p.trig_eps:
+        load = load * (1.0 + p.trig_eps * _sin(t, p.trig_f, p.trig_ph))
+    if p.drift:
+        load = load * (1.0 + p.drift * (t - p.drift_t0))
+    if p.level_a and pr.pos is not None:
+        load = load * (1.0 + p.level_a * np.sin(2 * math.pi * p.level_f * pr.pos[sl] + p.level_ph))
+    load = np.maximum(load, 0.05)
+    x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta,
+                                            p.age_a, max(p.age_tau, 1e-3 * dt), p.load_kx, p.load_xref, p.creep0, p.creep1,
+                                            float(start))
+    if status != 0:
+        raise LiengInputError(f"the slider simulation failed (status {status}): check --fn and the record's units")
+    if p.trig_ax:
+        x = x + p.trig_ax * _sin(t, p.trig_f, p.trig_phx)
+    return x, v, state
 
 
 def model_y(pr: Prepared, p: Params, x, v):
@@ -326,3 +336,66 @@ def _fit_level(pr, c, fn, p, iters):
             step *= 2
     p.fg = np.minimum(fg + off, fs)
     return p
+
+
+def _slip_seconds(pr: Prepared, c: Cycles) -> float | None:
+    d = pr.t[c.trough_i] - pr.t[c.peak_i]
+    d = d[d > 0]
+    return float(np.median(d)) if d.size >= 3 else None
+
+
+def calibrate_fn(pr: Prepared, fd: float | None, f0: float, iters: int = 4, bound: float = 0.4,
+                 match: str = "arcs"):
+    """The natural frequency by **indirect inference** from the slips.
+
+    The slips' own arc frequency ``fd`` (:func:`.segment.estimate_fn`) is
+    biased by the friction acting in them (a characteristic that changes
+    along the slip bends the arcs: -3 % to -15 % on records of several
+    friction laws).  The fn sought is the one whose baseline (identified on
+    the record at that fn) shows, simulated and read the same way, the arc
+    frequency the record shows: f <- f fd / fd_sim(f), a few fixed-point
+    steps.  Where no arc frequency can be read (``fd`` None) the slips'
+    median duration is matched instead, from ``f0``.
+
+    Returns (fn, relative change of the last step) or (None, None) when the
+    baseline cannot be simulated; fn stays within ``bound`` of the start."""
+    from .segment import estimate_fn, find_cycles
+
+    start = fd if fd is not None else f0
+    f = start
+    dur = None
+    if fd is None or match == "duration":
+        fd = None
+        dur = _slip_seconds(pr, find_cycles(pr, f0))
+        if dur is None:
+            return None, None
+    step = None
+    for _ in range(iters):
+        c = find_cycles(pr, f)
+        if c.n < 3:
+            break
+        try:
+            base = fit_baseline(pr, c, f)
+            xs, _, _ = simulate(pr, base, f)
+        except (LiengInputError, np.linalg.LinAlgError, ValueError):
+            break
+        q = pr_like(pr, xs)
+        cq = find_cycles(q, f)
+        if cq.n < 3:
+            break
+        if fd is not None:
+            fs_, _, _ = estimate_fn(q, cq, f)
+            if fs_ is None:
+                break
+            ratio = fd / fs_
+        else:
+            ds = _slip_seconds(q, cq)
+            if ds is None:
+                break
+            ratio = ds / dur
+        fnew = float(np.clip(f * ratio, start * (1 - bound), start * (1 + bound)))
+        step = abs(fnew / f - 1.0)
+        f = fnew
+        if step < 0.003:
+            break
+    return (f, step) if step is not None else (None, None)

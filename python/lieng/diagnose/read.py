@@ -25,6 +25,7 @@ that stands far above the spectrum around it removed; each is said in
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -44,7 +45,7 @@ _NAMES = {
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity"),
     "F": ("f", "friction", "force", "friction_force", "ft", "tangential"),
-    "N": ("n", "normal", "load", "normal_force", "fnormal"),
+    "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive"),
 }
 _LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6}
@@ -109,10 +110,21 @@ def _check_v0(v0) -> None:
               f"{V0_RANGE[1]:g} mm/s")
 
 
+#: words that give a column its role when its name is none of _NAMES
+#: ("Tangential force", "Normal load", "Stage position"), first match wins
+_WORDS = (("N", ("normal", "load")), ("F", ("friction", "tangential", "lateral", "shear", "traction")),
+          ("position", ("position", "stage")), ("v0", ("velocity", "speed")), ("t", ("time",)),
+          ("x", ("displacement", "extension")))
+
+
 def _role(name: str):
     key = name.strip().lower().replace(" ", "_").replace("-", "_")
     for role, alts in _NAMES.items():
         if key in alts:
+            return role
+    words = set(re.split(r"[^a-z0-9]+", key))
+    for role, alts in _WORDS:
+        if words & set(alts):
             return role
     return None
 
