@@ -16,8 +16,9 @@ the model of
 * each cycle's stick time (over the mean period), peak and trough (over D):
   what the model predicts *when* and *how high* (a modulated drive, ageing
   under holds or a stepped drive, a load or a drift show here);
-* the mean slip waveform: x from each predicted peak at 9 instants over 0.6
-  natural periods, less the peak, over D, against the record's;
+* the mean slip shape: x from each predicted peak at 9 instants over 0.6
+  natural periods, less the peak, over that slip's own drop (the drop is
+  judged above), against the record's;
 * when the extension predicts a part of the normal channel that is not
   locked to the motion (triggering): the RMS difference, in time, between
   that part of the record's y and of the model's (each less the baseline's
@@ -42,8 +43,8 @@ __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles, one cycle ahead from the record's own state (from "
-          "each trough): stick time (/ mean period), peak and trough (/ drop D); mean slip waveform at 9 instants over "
-          "0.6 natural periods (/ D); when the extension predicts the normal channel's part not locked to the motion, "
+          "each trough): stick time (/ mean period), peak and trough (/ drop D); mean slip shape at 9 instants over "
+          "0.6 natural periods (/ the slip's drop); when the extension predicts the normal channel's part not locked to the motion, "
           "its RMS difference in time (/ spread of y)")
 NWAVE = 9
 
@@ -113,9 +114,10 @@ class Judge:
         self.rec = np.column_stack([(t[c.peak_i[k + 1]] - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,
                                     x[c.trough_i[k + 1]] / self.D])
         self.tau = np.linspace(0.0, 0.6 / fn, NWAVE)
-        waves = [np.interp(t[c.peak_i[j + 1]] + self.tau, t, x) - x[c.peak_i[j + 1]] for j in k
+        waves = [(np.interp(t[c.peak_i[j + 1]] + self.tau, t, x) - x[c.peak_i[j + 1]])
+                 / max(x[c.peak_i[j + 1]] - x[c.trough_i[j + 1]], 1e-12 * self.D) for j in k
                  if t[c.peak_i[j + 1]] + self.tau[-1] <= t[-1]]
-        self.wave = np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan)
+        self.wave = np.mean(waves, axis=0) if waves else np.full(NWAVE, np.nan)
         self.mask = (pr.t >= lo) & (pr.t < hi)
         if pr.y is not None:
             ys = pr.y[self.mask]
@@ -145,9 +147,9 @@ class Judge:
             pred[row] = ((t[sl.start + ip] - t[sl.start]) / self.P, xs[ip] / self.D, xs[it] / self.D)
             tt = t[sl.start + ip] + self.tau
             if tt[-1] <= t[sl.stop - 1]:
-                waves.append(np.interp(tt, t[sl], xs) - xs[ip])
+                waves.append((np.interp(tt, t[sl], xs) - xs[ip]) / max(xs[ip] - xs[it], 1e-12 * self.D))
         dc = self.rec - pred
-        dw = self.wave - (np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan))
+        dw = self.wave - (np.mean(waves, axis=0) if waves else np.full(NWAVE, np.nan))
         ey = None
         if pr.y is not None and with_y:
             # the part of y not locked to the motion (locked to the clock), record against model
@@ -263,8 +265,11 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             # refine the frequency on the training part (sub-bin), on y or x above 2 fn
             sig = (pr.y if pr.y is not None else pr.x)[tr_mask]
             hp = sig - lowpass(sig, pr.dt, 2 * fn)
-            grid = f_tr + np.linspace(-1.0, 1.0, 41) / max(float(tt[-1] - tt[0]), pr.dt)
-            f_tr = float(max(grid, key=lambda f: _line_fit(hp, tt, f)[0]))
+            # coarse (a quarter of a bin over +-4 bins of the training span) then fine (a fortieth)
+            T = max(float(tt[-1] - tt[0]), pr.dt)
+            for half, num in ((4.0, 33), (0.25, 21)):
+                grid = f_tr + np.linspace(-half, half, num) / T
+                f_tr = float(max(grid, key=lambda f: _line_fit(hp, tt, f)[0]))
             idx, s, F, br, sid = slip_friction(pr, c, fn)
             m = pr.t[idx] < tsplit
             ti = pr.t[idx][m]
@@ -288,8 +293,15 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             f_ss = 1.0 / float(np.median(per))
             span = float(ts[-1] - ts[0])
             _, f, _, _ = drive_scan(ts, r, max(2.0 / span, 0.02 * f_ss), 0.5 * f_ss, nperm=0)
-            B = np.column_stack([np.ones(ts.size), np.sin(2 * math.pi * f * ts), np.cos(2 * math.pi * f * ts)])
-            co = np.linalg.lstsq(B, r, rcond=None)[0]
+
+            def fit(fq):
+                B = np.column_stack([np.ones(ts.size), np.sin(2 * math.pi * fq * ts), np.cos(2 * math.pi * fq * ts)])
+                co = np.linalg.lstsq(B, r, rcond=None)[0]
+                return float(np.sum((B @ co - r) ** 2)), co
+
+            # the scan's grid is about a bin wide: refine (a phase that slips over the held-out part costs it all)
+            f = float(min(f + np.linspace(-1.0, 1.0, 41) / max(span, 1e-12), key=lambda fq: fit(fq)[0]))
+            co = fit(f)[1]
             for sc in (0.8, 1.0, 1.2):
                 out.append(lvl(base.copy(drv_f=float(f), drv_a=sc * float(math.hypot(co[1], co[2]) / co[0]),
                                          drv_ph=float(math.atan2(co[2], co[1])))))
