@@ -16,9 +16,8 @@ the model of
 * each cycle's stick time (over the mean period), peak and trough (over D):
   what the model predicts *when* and *how high* (a modulated drive, ageing
   under holds or a stepped drive, a load or a drift show here);
-* the mean slip shape: x from each predicted peak at 9 instants over 0.6
-  natural periods, less the peak, over that slip's own drop (the drop is
-  judged above), against the record's;
+* the mean slip waveform: x from each predicted peak at 9 instants over 0.6
+  natural periods, less the peak, over D, against the record's;
 * when the extension predicts a part of the normal channel that is not
   locked to the motion (triggering): the RMS difference, in time, between
   that part of the record's y and of the model's (each less the baseline's
@@ -43,8 +42,8 @@ __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles, one cycle ahead from the record's own state (from "
-          "each trough): stick time (/ mean period), peak and trough (/ drop D); mean slip shape at 9 instants over "
-          "0.6 natural periods (/ the slip's drop); when the extension predicts the normal channel's part not locked to the motion, "
+          "each trough): stick time (/ mean period), peak and trough (/ drop D); mean slip waveform at 9 instants over "
+          "0.6 natural periods (/ D); when the extension predicts the normal channel's part not locked to the motion, "
           "its RMS difference in time (/ spread of y)")
 NWAVE = 9
 
@@ -87,8 +86,8 @@ class Judge:
     model runs on the record's drive and clock to its next slip, and its
     predicted stick time (over the mean period), peak and trough (over D)
     are compared with the record's, plus the mean slip waveform after the
-    predicted peaks against the record's; e = sqrt(mean of the per-cycle
-    squares + mean of the waveform's squares [+ the normal channel's
+    predicted peaks (over D) against the record's; e = sqrt(mean of the
+    per-cycle squares + mean of the waveform's squares [+ the normal channel's
     unlocked part]).  A trajectory that parts from the record's (rounding,
     chaos, a noisy rig) costs one cycle, not the rest of the record."""
 
@@ -114,10 +113,9 @@ class Judge:
         self.rec = np.column_stack([(t[c.peak_i[k + 1]] - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,
                                     x[c.trough_i[k + 1]] / self.D])
         self.tau = np.linspace(0.0, 0.6 / fn, NWAVE)
-        waves = [(np.interp(t[c.peak_i[j + 1]] + self.tau, t, x) - x[c.peak_i[j + 1]])
-                 / max(x[c.peak_i[j + 1]] - x[c.trough_i[j + 1]], 1e-12 * self.D) for j in k
+        waves = [np.interp(t[c.peak_i[j + 1]] + self.tau, t, x) - x[c.peak_i[j + 1]] for j in k
                  if t[c.peak_i[j + 1]] + self.tau[-1] <= t[-1]]
-        self.wave = np.mean(waves, axis=0) if waves else np.full(NWAVE, np.nan)
+        self.wave = np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan)
         self.mask = (pr.t >= lo) & (pr.t < hi)
         if pr.y is not None:
             ys = pr.y[self.mask]
@@ -147,9 +145,9 @@ class Judge:
             pred[row] = ((t[sl.start + ip] - t[sl.start]) / self.P, xs[ip] / self.D, xs[it] / self.D)
             tt = t[sl.start + ip] + self.tau
             if tt[-1] <= t[sl.stop - 1]:
-                waves.append((np.interp(tt, t[sl], xs) - xs[ip]) / max(xs[ip] - xs[it], 1e-12 * self.D))
+                waves.append(np.interp(tt, t[sl], xs) - xs[ip])
         dc = self.rec - pred
-        dw = self.wave - (np.mean(waves, axis=0) if waves else np.full(NWAVE, np.nan))
+        dw = self.wave - (np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan))
         ey = None
         if pr.y is not None and with_y:
             # the part of y not locked to the motion (locked to the clock), record against model
