@@ -338,6 +338,10 @@ def _fit_level(pr, c, fn, p, iters):
     return p
 
 
+#: calibrate_fn reads at most this many samples (the record's beginning)
+CALIBRATION_SAMPLES = 60_000
+
+
 def _slip_seconds(pr: Prepared, c: Cycles) -> float | None:
     d = pr.t[c.trough_i] - pr.t[c.peak_i]
     d = d[d > 0]
@@ -359,8 +363,10 @@ def calibrate_fn(pr: Prepared, fd: float | None, f0: float, iters: int = 4, boun
 
     Returns (fn, relative change of the last step) or (None, None) when the
     baseline cannot be simulated; fn stays within ``bound`` of the start."""
-    from .segment import estimate_fn, find_cycles
+    from .segment import estimate_fn, find_cycles, head
 
+    # a fixed-length part of a long record: as many slips as fix the duration, at a fixed cost
+    pr = head(pr, CALIBRATION_SAMPLES)
     start = fd if fd is not None else f0
     f = start
     dur = None

@@ -101,6 +101,22 @@ class Prepared:
         return [slice(s.j0, s.j0 + s.n) for s in self.strokes]
 
 
+def head(p: Prepared, nmax: int) -> Prepared:
+    """The prepared record's first ``nmax`` samples (whole strokes, the last
+    one cut): a part long enough for a global estimate at a fixed cost."""
+    if p.t.size <= nmax:
+        return p
+    strokes = []
+    for s in p.strokes:
+        if s.j0 >= nmax:
+            break
+        n = min(s.n, nmax - s.j0)
+        strokes.append(Stroke(i0=s.i0, i1=s.i0 + n, sign=s.sign, j0=s.j0))
+    m = strokes[-1].j0 + strokes[-1].n
+    return Prepared(t=p.t[:m], x=p.x[:m], vd=p.vd[:m], y=None if p.y is None else p.y[:m], strokes=strokes,
+                    dt=p.dt, flipped=p.flipped, notes=[], pos=None if p.pos is None else p.pos[:m])
+
+
 def smooth(x, dt, fn, deriv=0, win=None):
     """Savitzky-Golay (cubic) over a quarter natural period (or ``win``
     samples), derivative ``deriv``; short traces are returned unfiltered."""
