@@ -23,7 +23,7 @@ from .decide import ALPHA, decide, misfit, null_replicates
 from .evidence import CANDIDATES, MARGIN, SLIDING, sliding_statistics, statistics, y_on_motion
 from .extend import METRIC, Judge, candidates, gain, refine, split, subset
 from .read import Record, read_record, record_from_arrays, record_from_trc_deck
-from .segment import Cycles, estimate_fn, find_cycles, prepare
+from .segment import Cycles, estimate_fn, find_cycles, prepare, slip_seconds
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -244,10 +244,9 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
             fd2, fse2, _ = estimate_fn(pr, c1, fd) if c1.n >= 3 else (None, None, 0)
             if fd2 is not None:
                 fd, fse = fd2, fse2
-        dur = pr.t[c0.trough_i] - pr.t[c0.peak_i]
-        dur = dur[dur > 0]
-        f0 = fd if fd is not None else (0.5 / float(np.median(dur)) if dur.size >= 3 else None)
-        fcal = calibrate_fn(pr, None, f0, match="duration")[0] if f0 is not None else None
+        dur = slip_seconds(pr, c0)
+        f0 = fd if fd is not None else (0.5 / dur if dur is not None else None)
+        fcal = calibrate_fn(pr, f0) if f0 is not None else None
         if fcal is not None and fcal * pr.dt < 0.2:
             fn_used, src, u_fn = fcal, "estimated from the slips' duration", FN_UNCERTAINTY_DURATION
             notes.append(f"fn estimated from the slips: {fcal:.4g} Hz is the natural frequency at which the "
@@ -264,7 +263,7 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                 f"like a load): give --fn")
     else:
         fn_used, src, u_fn = float(fn), "given (--fn)", FN_UNCERTAINTY
-        fcal = calibrate_fn(pr, None, fd if fd is not None else fn, match="duration")[0]
+        fcal = calibrate_fn(pr, fd if fd is not None else fn)
         if fcal is not None and abs(fcal / fn - 1.0) > FN_CHECK:
             warnings.append(f"the slips say fn = {fcal:.4g} Hz (the baseline's slips last as long as the record's "
                             f"there), {100 * (fcal / fn - 1):+.0f} % from --fn {fn:g}: check --fn (the slip-shape "

@@ -37,7 +37,7 @@ import numpy as np
 
 from .. import _core
 from ..errors import LiengInputError
-from .segment import Cycles, Prepared, stick_ratios
+from .segment import Cycles, Prepared, slip_seconds, stick_ratios
 
 __all__ = ["Params", "simulate", "run_slice", "fit_baseline", "slip_friction", "model_y", "calibrate_fn"]
 
@@ -342,40 +342,26 @@ def _fit_level(pr, c, fn, p, iters):
 CALIBRATION_SAMPLES = 60_000
 
 
-def _slip_seconds(pr: Prepared, c: Cycles) -> float | None:
-    d = pr.t[c.trough_i] - pr.t[c.peak_i]
-    d = d[d > 0]
-    return float(np.median(d)) if d.size >= 3 else None
-
-
-def calibrate_fn(pr: Prepared, fd: float | None, f0: float, iters: int = 4, bound: float = 0.4,
-                 match: str = "arcs"):
+def calibrate_fn(pr: Prepared, f0: float, iters: int = 4, bound: float = 0.4) -> float | None:
     """The natural frequency by **indirect inference** from the slips.
 
-    The slips' own arc frequency ``fd`` (:func:`.segment.estimate_fn`) is
-    biased by the friction acting in them (a characteristic that changes
-    along the slip bends the arcs: -3 % to -15 % on records of several
-    friction laws).  The fn sought is the one whose baseline (identified on
-    the record at that fn) shows, simulated and read the same way, the arc
-    frequency the record shows: f <- f fd / fd_sim(f), a few fixed-point
-    steps.  Where no arc frequency can be read (``fd`` None) the slips'
-    median duration is matched instead, from ``f0``.
-
-    Returns (fn, relative change of the last step) or (None, None) when the
-    baseline cannot be simulated; fn stays within ``bound`` of the start."""
-    from .segment import estimate_fn, find_cycles, head
+    The slips' own arc frequency (:func:`.segment.estimate_fn`) is biased by
+    the friction acting in them (a characteristic that changes along the
+    slip bends the arcs: up to -50 % on records of several friction laws).
+    The fn sought is the one whose baseline (identified on the record at
+    that fn) gives, simulated and read the same way, slips as long as the
+    record's: f <- f d_sim(f) / d_record, a few fixed-point steps from
+    ``f0``, within ``bound`` of it.  Read on the record's first
+    CALIBRATION_SAMPLES samples.  None when the slips or the baseline
+    cannot be read or simulated."""
+    from .segment import find_cycles, head
 
     # a fixed-length part of a long record: as many slips as fix the duration, at a fixed cost
     pr = head(pr, CALIBRATION_SAMPLES)
-    start = fd if fd is not None else f0
-    f = start
-    dur = None
-    if fd is None or match == "duration":
-        fd = None
-        dur = _slip_seconds(pr, find_cycles(pr, f0))
-        if dur is None:
-            return None, None
-    step = None
+    dur = slip_seconds(pr, find_cycles(pr, f0))
+    if dur is None:
+        return None
+    f, moved = f0, False
     for _ in range(iters):
         c = find_cycles(pr, f)
         if c.n < 3:
@@ -386,22 +372,12 @@ def calibrate_fn(pr: Prepared, fd: float | None, f0: float, iters: int = 4, boun
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             break
         q = pr_like(pr, xs)
-        cq = find_cycles(q, f)
-        if cq.n < 3:
+        ds = slip_seconds(q, find_cycles(q, f))
+        if ds is None:
             break
-        if fd is not None:
-            fs_, _, _ = estimate_fn(q, cq, f)
-            if fs_ is None:
-                break
-            ratio = fd / fs_
-        else:
-            ds = _slip_seconds(q, cq)
-            if ds is None:
-                break
-            ratio = ds / dur
-        fnew = float(np.clip(f * ratio, start * (1 - bound), start * (1 + bound)))
+        fnew = float(np.clip(f * ds / dur, f0 * (1 - bound), f0 * (1 + bound)))
         step = abs(fnew / f - 1.0)
-        f = fnew
+        f, moved = fnew, True
         if step < 0.003:
             break
-    return (f, step) if step is not None else (None, None)
+    return f if moved else None

@@ -107,7 +107,6 @@ class Judge:
         ends = np.array([sl.stop for sl in pr.stroke_slices()])
         i0 = c.trough_i[k]
         span = c.trough_i[k + 1] - i0
-        self.k = k
         self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, k)]
         t, x = pr.t, pr.x
         self.rec = np.column_stack([(t[c.peak_i[k + 1]] - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,

@@ -317,15 +317,21 @@ def slip_arcs(p: Prepared, c: Cycles, extend: int = 1):
     return out
 
 
+def slip_seconds(p: Prepared, c: Cycles) -> float | None:
+    """The slips' median duration (s), peak to trough; None below three."""
+    d = p.t[c.trough_i] - p.t[c.peak_i]
+    d = d[d > 0]
+    return float(np.median(d)) if d.size >= 3 else None
+
+
 def estimate_fn(p: Prepared, c: Cycles, fn_guess: float | None = None):
     """The natural frequency from the slips (module docstring): (fn, its
     standard error, the number of slips used), or (None, None, 0) when the
     slips cannot fix it."""
-    dur = (p.t[c.trough_i] - p.t[c.peak_i])
-    dur = dur[dur > 0]
-    if dur.size < 3:
+    dur = slip_seconds(p, c)
+    if dur is None:
         return None, None, 0
-    f0 = fn_guess if fn_guess else 0.5 / float(np.median(dur))
+    f0 = fn_guess if fn_guess else 0.5 / dur
     slips = slip_arcs(p, c)
     if len(slips) < 3:
         return None, None, 0
