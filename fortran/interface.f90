@@ -262,7 +262,7 @@ end subroutine core_trc_calibrate
 
 !> TRC: velocities, BELFIT, the reverse Lienard construction, EL and ELN.
 subroutine core_trc_reduce(nn, t, x, xn, omnh, omnv, xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, &
-                           xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where)
+                           xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where, xx0, xxn0)
    use lienard_core, only: wp
    use trc, only: trc_reduce
    implicit none
@@ -293,9 +293,11 @@ subroutine core_trc_reduce(nn, t, x, xn, omnh, omnv, xs, v, vn, vln, vnln, am, x
    integer, intent(out) :: ieln                !< point of the - to + sign change (0: none)
    integer, intent(out) :: status              !< 0 or a trc error code
    integer, intent(out) :: where               !< point of the error
+   real(wp), intent(out) :: xx0(nn)            !< XX before the shift by EL
+   real(wp), intent(out) :: xxn0(nn)           !< XXN before the shift by ELN
    xs = x
    call trc_reduce(nn, t, xs, xn, omnh, omnv, v, vn, vln, vnln, am, xx, yy, xxn, yyn, &
-                   xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where)
+                   xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where, xx0, xxn0)
 end subroutine core_trc_reduce
 
 !> BELFIT: group-fitting smoothing of Y as a function of X.

@@ -90,7 +90,7 @@ contains
    !> Points 1 and NN of XX, YY, XXN, YYN are not constructed (loop 51 runs
    !> J = 2..NN-1): they keep the listing's zero, shifted.
    subroutine trc_reduce(nn, t, x, xn, omnh, omnv, v, vn, vln, vnln, am, xx, yy, xxn, yyn, &
-                         xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where)
+                         xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln, status, where, xx0, xxn0)
       integer, intent(in) :: nn                !< NN, number of points
       real(wp), intent(in) :: t(nn)            !< T (s)
       real(wp), intent(inout) :: x(nn)         !< X (mm)
@@ -117,6 +117,8 @@ contains
       integer, intent(out) :: ieln             !< I of loop 520: the last - before the + run (0: none)
       integer, intent(out) :: status           !< trc_ok or an error code
       integer, intent(out) :: where            !< the point the error refers to
+      real(wp), intent(out) :: xx0(nn)         !< XX before the shift by EL (not in the listing: for origin fits)
+      real(wp), intent(out) :: xxn0(nn)        !< XXN before the shift by ELN (likewise)
       real(wp) :: xxx(nn), yyy(nn)
       real(wp) :: xk, xl, al1, al2, xkn, xln, anl1, anl2
       integer :: i, j, nk, ifound
@@ -125,6 +127,7 @@ contains
       xx = 0.0_wp; yy = 0.0_wp; xxn = 0.0_wp; yyn = 0.0_wp
       xlnr = 0.0_wp; xnlnr = 0.0_wp; amt = 0.0_wp; amtn = 0.0_wp
       el = 0.0_wp; eln = 0.0_wp; has_eln = 0; iel = 0; ieln = 0; where = 0
+      xx0 = 0.0_wp; xxn0 = 0.0_wp
       status = trc_ok
       if (nn < 2 * belfit_group) then
          status = trc_bad_size
@@ -169,6 +172,9 @@ contains
          anl2 = sqrt((xn(j) - xn(j + 1))**2 + (vnln(j) - vnln(j + 1))**2)
          xxn(j) = (xkn * anl1 + xln * anl2) / (anl1 + anl2)
       end do
+
+      xx0 = xx
+      xxn0 = xxn
 
       ! DO 52 I=2,NN: VLN > 0 followed by four negative samples.  The listing
       ! reads up to VLN(NN+4), zeros that fail the test: I <= NN-4 here.

@@ -33,7 +33,7 @@ def read_trc_csv(path):
     with open(path, newline="") as fh:
         rows = list(csv.reader(fh))
     head = rows[0]
-    data = np.array([[float(c) for c in r] for r in rows[1:]])
+    data = np.array([[float(c) if c else np.nan for c in r] for r in rows[1:]])  # empty: undefined
     return head, {h: data[:, k] for k, h in enumerate(head)}
 
 

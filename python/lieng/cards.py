@@ -29,13 +29,17 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from decimal import ROUND_HALF_EVEN, Decimal
+from decimal import ROUND_HALF_EVEN, Context, Decimal
 from pathlib import Path
 from typing import Iterable, Sequence
 
 import numpy as np
 
 from .errors import LiengInputError
+from .inputs import read_text
+
+#: a deck is at most a few hundred cards of 80 columns
+MAX_DECK_BYTES = 1024**2
 
 __all__ = [
     "Card",
@@ -246,8 +250,21 @@ def read_record(line: str, fmt: str | Group) -> list[int | float]:
 # --------------------------------------------------------------------------
 
 
+#: enough digits for any double printed in F (at most 309 integer digits)
+_WIDE = Context(prec=800)
+
+
 def _stars(w: int) -> str:
     return "*" * w
+
+
+def _nonfinite(v: float, w: int) -> str:
+    """A value the arithmetic could not give: an infinity does not fit any
+    field (asterisks, as for an overflow); an undefined value (NaN) prints
+    ``UNDEF`` (lieng's convention: a listing holds no NaN token)."""
+    if math.isnan(v):
+        return "UNDEF"[:w].rjust(w)
+    return _stars(w)
 
 
 def _format_I(v: int, w: int) -> str:
@@ -257,10 +274,11 @@ def _format_I(v: int, w: int) -> str:
 
 def _format_F(v: float, w: int, d: int) -> str:
     if not math.isfinite(v):
-        s = "NaN" if math.isnan(v) else ("-Inf" if v < 0 else "Inf")
-        return s.rjust(w) if len(s) <= w else _stars(w)
+        return _nonfinite(v, w)
     neg = math.copysign(1.0, v) < 0
-    q = abs(Decimal(v)).quantize(Decimal(1).scaleb(-d), rounding=ROUND_HALF_EVEN)
+    if abs(v) >= 10.0 ** min(w, 308):      # more integer digits than the field has columns
+        return _stars(w)
+    q = abs(Decimal(v)).quantize(Decimal(1).scaleb(-d), rounding=ROUND_HALF_EVEN, context=_WIDE)
     digits = f"{q:f}"
     ipart, _, fpart = digits.partition(".")
     body = f"{ipart}.{fpart}"
@@ -273,18 +291,17 @@ def _format_F(v: float, w: int, d: int) -> str:
 
 def _format_E(v: float, w: int, d: int, letter: str = "E") -> str:
     if not math.isfinite(v):
-        s = "NaN" if math.isnan(v) else ("-Inf" if v < 0 else "Inf")
-        return s.rjust(w) if len(s) <= w else _stars(w)
+        return _nonfinite(v, w)
     neg = math.copysign(1.0, v) < 0
     a = abs(Decimal(v))
     if a == 0:
         mant, e = Decimal(0).quantize(Decimal(1).scaleb(-d)), 0
     else:
         e = a.adjusted() + 1
-        mant = a.scaleb(-e).quantize(Decimal(1).scaleb(-d), rounding=ROUND_HALF_EVEN)
+        mant = a.scaleb(-e, context=_WIDE).quantize(Decimal(1).scaleb(-d), rounding=ROUND_HALF_EVEN, context=_WIDE)
         if mant >= 1:
             e += 1
-            mant = a.scaleb(-e).quantize(Decimal(1).scaleb(-d), rounding=ROUND_HALF_EVEN)
+            mant = a.scaleb(-e, context=_WIDE).quantize(Decimal(1).scaleb(-d), rounding=ROUND_HALF_EVEN, context=_WIDE)
     frac = f"{mant:f}".partition(".")[2]
     if abs(e) <= 99:
         exp = f"{letter}{'-' if e < 0 else '+'}{abs(e):02d}"
@@ -539,16 +556,13 @@ def read_deck(path, program: str = "lieng1"):
         with the values as the 1971 program would have read them.
     """
     deck_class = _deck_class(program)
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="ascii", errors="strict")
-    except FileNotFoundError:
-        raise LiengInputError(f"{path}: no such deck") from None
-    except UnicodeDecodeError as exc:
-        raise LiengInputError(f"{path}: byte {exc.start + 1} is not ASCII (a card deck is plain text)") from None
-    except IsADirectoryError:
-        raise LiengInputError(f"{path}: is a directory, not a deck") from None
-    return deck_class.from_lines(text.splitlines(), source=str(path))
+    text = read_text(path, encoding="ascii", what="deck", max_bytes=MAX_DECK_BYTES)
+    # cards end at LF, CRLF or CR: a form feed or a TAB inside a card is a
+    # character of that card, reported with its columns
+    lines = re.split(r"\r\n|\r|\n", text)
+    if lines[-1] == "":
+        lines.pop()
+    return deck_class.from_lines(lines, source=str(path))
 
 
 def write_deck(deck, path) -> None:

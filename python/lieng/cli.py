@@ -9,6 +9,9 @@ leaving OUTDIR untouched.
 from __future__ import annotations
 
 import argparse
+import math
+import os
+import re
 import sys
 import warnings
 from pathlib import Path
@@ -18,6 +21,8 @@ from .errors import LiengInputError
 __all__ = ["main"]
 
 PROGRAMS = ("lieng1", "mlien", "trc")
+#: the words of the message for a failure no check foresaw (the fuzz suite looks for them)
+UNEXPECTED = "unexpected failure on this input"
 #: the programs whose decks hold a characteristic (cycles, sweep)
 CHAR_PROGRAMS = ("lieng1", "mlien")
 
@@ -27,8 +32,9 @@ def _run_lieng1(args) -> int:
     from .graf import lieng1_plots
     from .lieng1 import run_deck
     from .listing import lieng1_listing
-    from .outputs import staged_outdir, write_csv, write_lines
+    from .outputs import check_outdir, staged_outdir, write_csv, write_lines
 
+    check_outdir(args.outdir, args.force)
     deck = read_deck(args.deck, program="lieng1")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -36,7 +42,7 @@ def _run_lieng1(args) -> int:
     for w in caught:
         print(f"lieng: warning: {w.message}", file=sys.stderr)
     listing = lieng1_listing(deck, res)
-    with staged_outdir(args.outdir) as tmp:
+    with staged_outdir(args.outdir, args.force) as tmp:
         write_lines(tmp / "listing.txt", listing)
         rows = (
             (k + 1, i + 1, float(res.x[k, i]), float(res.y[k, i]), float(res.t[k, i]))
@@ -59,12 +65,13 @@ def _run_mlien(args) -> int:
     from .graf import mlien_plots
     from .listing import mlien_listing
     from .mlien import run_deck
-    from .outputs import staged_outdir, write_csv, write_lines
+    from .outputs import check_outdir, staged_outdir, write_csv, write_lines
 
+    check_outdir(args.outdir, args.force)
     deck = read_deck(args.deck, program="mlien")
     res = run_deck(deck, lookup=args.lookup)
     listing = mlien_listing(deck, res)
-    with staged_outdir(args.outdir) as tmp:
+    with staged_outdir(args.outdir, args.force) as tmp:
         write_lines(tmp / "listing.txt", listing)
         write_csv(tmp / "trajectories.csv", ["traj", "i", "x", "y", "t"],
                   ((1, i + 1, float(res.x[i]), float(res.y[i]), float(res.t[i])) for i in range(res.npts)))
@@ -81,33 +88,22 @@ def _run_mlien(args) -> int:
     return 0
 
 
-def _is_csv(path) -> bool:
-    p = Path(path)
-    if p.suffix.lower() == ".csv":
-        return True
-    try:
-        with open(p, encoding="utf-8", errors="replace") as fh:
-            first = fh.readline()
-    except OSError:
-        return False
-    return "t" in [c.strip() for c in first.split(",")]
-
-
 def _is_table(path) -> bool:
     """A delimited table with a header naming a time column (comma, TAB,
-    semicolon or whitespace), rather than a card deck."""
-    p = Path(path)
-    if p.suffix.lower() in (".csv", ".tsv", ".txt") and _is_csv(p):
-        return True
-    try:
-        if not p.is_file():
-            return True                     # let the table reader name the problem
-        with open(p, encoding="utf-8", errors="replace") as fh:
-            first = fh.readline(4096)
-    except OSError:
-        return True
+    semicolon or whitespace), rather than a card deck.  A path that is not a
+    readable regular file counts as a table: the reader names the problem
+    (and a FIFO is never opened)."""
     import re
 
+    from .inputs import head
+
+    p = Path(path)
+    try:
+        first = re.split(r"\r\n|\r|\n", head(p))[0]
+    except LiengInputError:
+        return True
+    if p.suffix.lower() in (".csv", ".tsv"):
+        return True
     cells = [c.strip().lower() for c in re.split(r"[,;\t]|\s+", first) if c.strip()]
     return any(c in ("t", "time") or c.startswith(("t[", "t(", "time[", "time(")) for c in cells)
 
@@ -116,12 +112,13 @@ def _run_trc(args) -> int:
     from .cards import read_deck
     from .graf import trc_plots
     from .listing import trc_listing
-    from .outputs import staged_outdir, write_csv, write_lines
+    from .outputs import check_outdir, staged_outdir, write_csv, write_lines
     from .trc import CSV_COLUMNS, read_csv, trc
 
+    check_outdir(args.outdir, args.force)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        if _is_csv(args.deck):
+        if _is_table(args.deck):
             if args.omnh is None:
                 raise LiengInputError(f"{args.deck}: a CSV trace needs --omnh (natural frequency of the "
                                       f"horizontal mode, rad/s)")
@@ -139,10 +136,10 @@ def _run_trc(args) -> int:
         print(f"lieng: warning: {w.message}", file=sys.stderr)
     listing = trc_listing(res)
     cols = res.columns()
-    with staged_outdir(args.outdir) as tmp:
+    with staged_outdir(args.outdir, args.force) as tmp:
         write_lines(tmp / "listing.txt", listing)
         write_csv(tmp / "trc.csv", list(CSV_COLUMNS),
-                  ([int(cols["i"][k])] + [float(cols[c][k]) for c in CSV_COLUMNS[1:]] for k in range(res.nn)))
+                  ([int(cols["i"][k])] + [_cell(cols[c][k]) for c in CSV_COLUMNS[1:]] for k in range(res.nn)))
         if not args.no_plots:
             trc_plots(res, tmp)
     if not args.quiet:
@@ -153,6 +150,12 @@ def _run_trc(args) -> int:
     return 0
 
 
+def _cell(v):
+    """A CSV cell: the float, or None (an empty cell) for an undefined value."""
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
 def _deck_char(args):
     from .cards import read_deck
 
@@ -161,14 +164,13 @@ def _deck_char(args):
 
 
 def _cycles(args) -> int:
-    import json
-
     from .cycles import find_cycles
+    from .outputs import dumps_json
 
     deck, x, y = _deck_char(args)
     res = find_cycles(x, y, mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
     if args.json:
-        print(json.dumps(res.to_json(), indent=2))
+        print(dumps_json(res.to_json(), indent=2))
     else:
         print(f"{args.deck}: mode {args.mode}; equilibrium at X = {res.equilibrium:.6g}; the origin is "
               f"{'stable' if res.origin_stable else 'unstable'}")
@@ -181,9 +183,8 @@ def _cycles(args) -> int:
 
 
 def _sweep(args) -> int:
-    import json
-
     from .cycles import parse_range, sweep_dmu, sweep_v0
+    from .outputs import dumps_json
 
     deck, x, y = _deck_char(args)
     if args.dmu is not None:
@@ -196,7 +197,7 @@ def _sweep(args) -> int:
         res = sweep_v0(x, y, parse_range(args.v0, "--v0"), mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
         head, unit, crit = "v0 (mm/s)", " mm/s", "v_oc (S.L.C. and U.L.C. merge)"
     if args.json:
-        print(json.dumps(res.to_json(), indent=2))
+        print(dumps_json(res.to_json(), indent=2))
     else:
         print(f"{head:>14} {'origin':>9} {'S.L.C. (mm)':>12} {'U.L.C. (mm)':>12}")
         for v, o, a, b in zip(res.v0, res.origin_stable, res.stable_amplitude, res.unstable_amplitude):
@@ -208,13 +209,15 @@ def _sweep(args) -> int:
 
 
 def _diagnose(args) -> int:
-    import json
     import sys
 
     from .diagnose import diagnose, read_record, record_from_trc_deck
     from .diagnose.report import summary_lines, write_outputs
     from .outputs import staged_outdir
 
+    from .outputs import check_outdir, dumps_json
+
+    check_outdir(args.outdir, args.force)
     fn = args.fn
     if _is_table(args.data):
         rec = read_record(args.data, v0=args.v0, stiffness=args.stiffness)
@@ -227,10 +230,10 @@ def _diagnose(args) -> int:
             print(f"\rcalibrating against the baseline: replicate {k}/{n}", end="" if k < n else "\n",
                   file=sys.stderr, flush=True)
     d = diagnose(rec, fn, progress=progress)
-    with staged_outdir(args.outdir) as tmp:
+    with staged_outdir(args.outdir, args.force) as tmp:
         names = write_outputs(d, tmp, str(args.data), plots=not args.no_plots)
     if args.json:
-        print(json.dumps(d.to_json(), indent=2, allow_nan=False))
+        print(dumps_json(d.to_json(), indent=2))
     elif not args.quiet:
         print("\n".join(summary_lines(d, str(args.data))))
         print(f"wrote {Path(args.outdir) / names[0]}, " + ", ".join(names[1:]))
@@ -238,15 +241,18 @@ def _diagnose(args) -> int:
 
 
 def _synth(args) -> int:
-    from .synth import synthesize
+    from .outputs import check_outfile, replace_file
+    from .synth import MAX_CYCLES, synthesize
 
+    out = check_outfile(args.output, args.force)
+    if args.seed is not None and not 0 <= args.seed < 2**63:
+        raise LiengInputError(f"--seed {args.seed}: a seed is an integer from 0 to 2**63-1")
+    if not 1 <= args.cycles <= MAX_CYCLES:
+        raise LiengInputError(f"--cycles {args.cycles}: from 1 to {MAX_CYCLES} cycles")
+    if args.strength is not None and not (0 <= args.strength <= 10):
+        raise LiengInputError(f"--strength {args.strength}: the effect's scale must be from 0 to 10 (1 = the default)")
     rec = synthesize(args.effect, args.seed, cycles=args.cycles, strength=args.strength)
-    out = Path(args.output)
-    if out.parent and not out.parent.exists():
-        raise LiengInputError(f"-o {args.output}: the directory {out.parent} does not exist")
-    tmp = out.with_name(f".{out.name}.tmp")
-    rec.write_csv(tmp)
-    tmp.replace(out)
+    replace_file(out, rec.write_csv)
     if not args.quiet:
         extra = ""
         v0 = "" if rec.v0_col is not None else f" --v0 {rec.v0:.6g}"
@@ -257,9 +263,10 @@ def _synth(args) -> int:
 
 def _figures(args) -> int:
     from .figures import figures
-    from .outputs import staged_outdir
+    from .outputs import check_outdir, staged_outdir
 
-    with staged_outdir(args.outdir) as tmp:
+    check_outdir(args.outdir, args.force)
+    with staged_outdir(args.outdir, args.force) as tmp:
         paths = figures(tmp, cards=args.cards, only=args.only)
     if not args.quiet:
         print(f"wrote {len(paths)} figures to {args.outdir}/: " + ", ".join(p.name for p in paths))
@@ -267,27 +274,29 @@ def _figures(args) -> int:
 
 
 def _twodof(args) -> int:
-    import json
+    from .outputs import check_outdir, dumps_json
+    from .twodof import T_END_MIN, compare, write_outputs
 
-    from .twodof import compare, write_outputs
-
+    if args.outdir is not None:
+        check_outdir(args.outdir, args.force)
     for name in ("preload", "rpm", "t_end"):
         v = getattr(args, name)
         if not (v > 0 and v < float("inf")):
             raise LiengInputError(f"--{name.replace('_', '-')} {v}: must be a positive number")
-    if args.t_end > 36000:
-        raise LiengInputError(f"--t-end {args.t_end}: at most 36000 s")
+    if not T_END_MIN <= args.t_end <= 36000:
+        raise LiengInputError(f"--t-end {args.t_end:g}: from {T_END_MIN:g} to 36000 s (the steady state is read "
+                              f"after the first {T_END_MIN / 2:g} s)")
     keep: dict = {}
     if args.belt is not None and not (0 < args.belt < 1):
         raise LiengInputError(f"--belt {args.belt}: the belt velocity must be between 0 and 1 m/s")
     res = compare(preload=args.preload, rpm=args.rpm, t_end=args.t_end, keep=keep, belt=args.belt)
-    if args.outdir:
+    if args.outdir is not None:
         from .outputs import staged_outdir
 
-        with staged_outdir(args.outdir) as tmp:
+        with staged_outdir(args.outdir, args.force) as tmp:
             write_outputs(res, keep, tmp)
     if args.json:
-        print(json.dumps(res, indent=2))
+        print(dumps_json(res, indent=2))
     else:
         pap = res.get("paper")
         print(f"dual-pin-on-disc, Fn = {args.preload:g} N, belt {res['belt_m_s']:.4g} m/s, {args.t_end:g} s; modal "
@@ -306,8 +315,45 @@ def _twodof(args) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with a one-line usage error (``lieng: error: ...``, status 2)."""
+
+    def error(self, message):
+        sub = self.prog.split()[1:]
+        where = f"{' '.join(sub)}: " if sub else ""
+        hint = f"lieng {' '.join(sub)} --help" if sub else "lieng --help"
+        self.exit(2, f"lieng: error: {where}{' '.join(message.split())} (see {hint})\n")
+
+
+#: a value that starts with a minus sign: a negative number, a range
+#: (``-1:2:3``) or ``-inf``
+_NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
+
+
+def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
+    """``--v0 -1:2:3`` as ``--v0=-1:2:3``: argparse takes a value that starts
+    with a minus sign for an option unless it is a plain number."""
+    takes_value = set()
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sp in action.choices.values():
+                takes_value |= {o for a in sp._actions if a.option_strings and a.nargs is None
+                                and not isinstance(a, (argparse._StoreTrueAction, argparse._HelpAction))
+                                for o in a.option_strings}
+    out, k = [], 0
+    while k < len(argv):
+        a = argv[k]
+        if a in takes_value and a.startswith("--") and k + 1 < len(argv) and _NEGATIVE_VALUE.match(argv[k + 1]):
+            out.append(f"{a}={argv[k + 1]}")
+            k += 2
+            continue
+        out.append(a)
+        k += 1
+    return out
+
+
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="lieng",
         description="Antoniou's 1971 Lienard-plane stick-slip programs, restored.",
     )
@@ -327,6 +373,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--omnv", type=float, help="trc, CSV input with xn: natural frequency of the normal mode (rad/s)")
     r.add_argument("--origin", choices=("listing", "fit"), default="listing",
                    help="trc: EL/ELN as the listing finds them (default) or by a better-conditioned line fit")
+    r.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
     r.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
     def deck_args(q):
         q.add_argument("deck", help="a LIENG-1 (or, with --program mlien, MLIEN) card deck")
@@ -366,6 +413,7 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record; estimated from the sticks when not given")
     dg.add_argument("-o", "--outdir", required=True, help="output directory")
+    dg.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
     dg.add_argument("--json", action="store_true", help="print diagnosis.json")
     dg.add_argument("--no-plots", action="store_true", help="write diagnosis.json and report.md only")
     dg.add_argument("-q", "--quiet", action="store_true", help="print nothing (errors still go to stderr)")
@@ -379,6 +427,7 @@ def build_parser() -> argparse.ArgumentParser:
     sy.add_argument("--cycles", type=int, default=16, help="approximate number of cycles (default 16)")
     sy.add_argument("--strength", type=float, default=None, help="scale of the effect (default 1)")
     sy.add_argument("-o", "--output", required=True, help="the CSV to write")
+    sy.add_argument("--force", action="store_true", help="replace the file if it exists (a regular file only)")
     sy.add_argument("-q", "--quiet", action="store_true")
     td = sub.add_parser("twodof", help="the 2-DoF dual-pin-on-disc model (seed 001) against the 1-DoF model",
                         description="Simulate the reconstructed 2-DoF dual-pin-on-disc rig (Leine's switch "
@@ -390,12 +439,14 @@ def build_parser() -> argparse.ArgumentParser:
     td.add_argument("--belt", type=float, help="belt velocity (m/s) instead of the disc at --rpm and r2 = 0.08 m "
                     "(e.g. 0.00838, sec. 5's value)")
     td.add_argument("-o", "--outdir", help="write twodof.json and plots here")
+    td.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
     td.add_argument("--json", action="store_true", help="print JSON")
     fg = sub.add_parser("figures", help="regenerate the thesis's theoretical figures (2.22-2.29, A9-1..A9-7)",
                         description="Regenerate the theoretical figures the thesis describes, each from a deck "
                                     "in cards/ (cards/figures/, cards/mlien_a9_7.dat), each PNG captioned with "
                                     "the section it reproduces.")
     fg.add_argument("-o", "--outdir", required=True, help="output directory")
+    fg.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
     fg.add_argument("--cards", default="cards", help="the project's cards directory (default: ./cards)")
     fg.add_argument("--only", nargs="+", metavar="FIG", help="only these figures (e.g. 2.27 A9-7)")
     fg.add_argument("-q", "--quiet", action="store_true")
@@ -403,12 +454,17 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    """Run the command line; returns the exit status (0, or 2 for bad input)."""
     import warnings
 
     import numpy as np
 
     parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        args = parser.parse_args(_join_negative_values(parser, [str(a) for a in argv]))
+    except SystemExit as exc:               # --help (0) or a usage error (2, one line already printed)
+        return int(exc.code or 0) if isinstance(exc.code, (int, type(None))) else 2
     # numerical warnings are not messages for the user: every output is
     # checked for finiteness where it is written, and bad input gets one line
     with warnings.catch_warnings(), np.errstate(all="ignore"):
@@ -431,7 +487,19 @@ def _dispatch(parser, args) -> int:
     except KeyboardInterrupt:  # pragma: no cover
         print("lieng: interrupted", file=sys.stderr)
         return 130
-    return 0
+    except MemoryError:
+        print(f"lieng: error: {args.command}: not enough memory for this input", file=sys.stderr)
+        return 2
+    except Exception as exc:
+        # the last line of defence: a failure the checks above did not foresee
+        # still gets one line (LIENG_DEBUG=1 shows the traceback); the fuzz
+        # suite fails on this message, so each one is fixed at its cause
+        if os.environ.get("LIENG_DEBUG"):
+            raise
+        msg = " ".join(str(exc).split())[:200]
+        print(f"lieng: error: {args.command}: {UNEXPECTED} ({type(exc).__name__}: {msg}); please report it "
+              f"(LIENG_DEBUG=1 shows the traceback)", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -368,13 +368,18 @@ def sweep_dmu(xchl, ychl, factors, v0: float | None = None, mode: str = "exact",
     return _sweep(factors, move, "sweep dmu", onset, mode, dtheta, lookup, progress, find_dmu_oc, "dmu", **kw)
 
 
+#: the most values a sweep takes (each is a limit-cycle search of about 0.05 s)
+MAX_SWEEP = 2000
+
+
 def parse_range(text: str, name: str = "--v0"):
-    """'START:STOP:N' -> N values from START to STOP."""
+    """'START:STOP:N' -> N values from START to STOP (N at most :data:`MAX_SWEEP`)."""
     try:
         a, b, n = text.split(":")
         a, b, n = float(a), float(b), int(n)
     except ValueError:
         raise LiengInputError(f"{name} {text!r}: expected START:STOP:N, e.g. 1:30:50") from None
-    if n < 1 or n > 100000 or not (math.isfinite(a) and math.isfinite(b)):
-        raise LiengInputError(f"{name} {text!r}: N must be 1..100000 and START, STOP finite")
+    if n < 1 or n > MAX_SWEEP or not (math.isfinite(a) and math.isfinite(b)) or max(abs(a), abs(b)) > 1e100:
+        raise LiengInputError(f"{name} {text!r}: N must be from 1 to {MAX_SWEEP} and START, STOP finite "
+                              f"numbers (|value| <= 1e100)")
     return list(np.linspace(a, b, n))

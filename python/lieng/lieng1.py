@@ -202,7 +202,7 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
     except CentreUndefined as exc:
         if _strict_centre:
             raise
-        warnings.warn(f"{exc}; xmdl and ymdl are NaN (LIENG-1's construction does not use them)", stacklevel=2)
+        warnings.warn(f"{exc}; xmdl and ymdl are undefined (NaN; UNDEF in the listing; LIENG-1's construction does not use them)", stacklevel=2)
         slope = np.diff(y) / np.diff(x)
         centre = Centre(slope, 0, 0, 0, 0, float("nan"), float("nan"))
     try:
@@ -235,6 +235,40 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
                         centre.xmdl, centre.ymdl, centre, x, y, starts, float(dtheta))
 
 
+#: trajectories larger than this many times the size of the characteristic are reported
+GROWTH_WARN = 1e6
+
+
+def check_growth(x, y, t, xchl, ychl, where: str, dtheta: float, start=()) -> None:
+    """Refuse trajectories that overflow and warn on ones that grow without
+    bound; both mean an arc step DTHETA too large for the POINT step.
+
+    Raises
+    ------
+    LiengInputError
+        A non-finite x, y or t (naming ``where``, DTHETA's card and columns).
+
+    Warns
+    -----
+    UserWarning
+        |x| or |y| beyond :data:`GROWTH_WARN` times the characteristic's size.
+    """
+    x, y, t = (np.atleast_2d(np.asarray(a, float)) for a in (x, y, t))
+    bad = ~(np.isfinite(x) & np.isfinite(y) & np.isfinite(t))
+    if bad.any():
+        k, i = (int(v) for v in np.argwhere(bad)[0])
+        traj = f"trajectory {k + 1}, " if x.shape[0] > 1 else ""
+        raise LiengInputError(f"{where}: DTHETA = {dtheta:g}: at {traj}point {i + 1} the arithmetic overflows "
+                              f"(x, y or t is no longer a finite number): the arc step DTHETA (radians) is far "
+                              f"too large for the POINT step")
+    size = max(float(np.ptp(xchl)), float(np.ptp(ychl)), *(abs(float(v)) for v in start), 1e-300)
+    big = max(float(np.max(np.abs(x))), float(np.max(np.abs(y))))
+    if big > GROWTH_WARN * size:
+        warnings.warn(f"{where}: DTHETA = {dtheta:g}: the trajectories grow to |x|, |y| = {big:.3g}, "
+                      f"{big / size:.2g} times the size of the characteristic: the POINT step is accurate only "
+                      f"for small DTHETA (listing fields too narrow for a value print asterisks)", stacklevel=3)
+
+
 def lookup_code(lookup: str) -> int:
     """The core's integer for a POINT mode name."""
     if lookup not in LOOKUP_MODES:
@@ -256,10 +290,12 @@ def run_deck(deck: Deck, lookup: str = "listing", ntraj: int = 9, npts: int = 30
     res = lieng1(deck.xchl[:n], deck.ychl[:n], deck.xinp, deck.yinp, deck.dtheta, deck.xincr, deck.yincr,
                  ntraj=ntraj, npts=npts, lookup=lookup, _locate=deck.locator(),
                  _locate_start=f"{deck.source}: card 3, columns 26-45 (XINP, YINP)", _strict_centre=True)
+    check_growth(res.x, res.y, res.t, res.xchl, res.ychl, deck.locate("DTHETA"), deck.dtheta,
+                 (deck.xinp, deck.yinp))
     if math.isnan(phi_of(res.ymdl, deck.ampv0)):
         warnings.warn(
             f"{deck.source}: PHI = ARCOS(VO/AMPV0) is undefined for VO = {res.ymdl:g}, AMPV0 = {deck.ampv0:g} "
-            f"(the 1971 run would have stopped here); LIENG-1 does not use PHI, so it is listed as NaN",
+            f"(the 1971 run would have stopped here); LIENG-1 does not use PHI, so it is listed as UNDEF",
             stacklevel=2,
         )
     return res

@@ -35,7 +35,7 @@ from .cards import Card, read_cards
 from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
                              char_from_values, check_characteristic)
 from .errors import LiengInputError
-from .lieng1 import lookup_code
+from .lieng1 import check_growth, lookup_code
 
 __all__ = ["LAYOUT", "TRIGGER_LISTING", "Deck", "MlienResult", "mlien", "run_deck", "trial_run_points"]
 
@@ -231,9 +231,20 @@ def mlien(xchl, ychl, xinp, yinp, dtheta, omega, ampv0, trigger=None, npts=3000,
         np.array(trig, dtype=float), lookup_code(lookup))
     status, where = int(status), int(where)
     if status == 9:
+        tw = float(T[where - 1])
+        with np.errstate(all="ignore"):
+            phase = np.float64(omega) * np.float64(tw)
+            drive = float(ampv0) * float(np.cos(phase))
+        if not math.isfinite(tw):
+            raise LiengInputError(
+                f"{names['DTHETA']}: DTHETA = {float(dtheta):g}: at point {where} the time T is no longer a finite "
+                f"number: the arc step DTHETA (radians) is far too large for the POINT step")
+        if not math.isfinite(float(phase)):
+            raise LiengInputError(
+                f"{names['OMEGA']}: OMEGA = {float(omega):g}: at point {where} the phase OMEGA*T overflows")
         raise LiengInputError(
-            f"{names['OMEGA']}..{names['AMPV0']}: at point {where} (T = {T[where - 1]:.6g}) the driving "
-            f"velocity AMPV0*COS(OMEGA*T) = {float(ampv0) * math.cos(float(omega) * T[where - 1]):.6g} needs the "
+            f"{names['OMEGA']}..{names['AMPV0']}: at point {where} (T = {tw:.6g}) the driving "
+            f"velocity AMPV0*COS(OMEGA*T) = {drive:.6g} needs the "
             f"characteristic at a velocity outside its range (TIMDIS would use an undefined ADIFF); "
             f"extend YCHL or reduce AMPV0"
         )
@@ -247,6 +258,7 @@ def mlien(xchl, ychl, xinp, yinp, dtheta, omega, ampv0, trigger=None, npts=3000,
                               f"(equal-slope interpolation divides by zero)")
     if status != 0:
         raise LiengInputError(f"the MLIEN core stopped with status {status} at point {where}")
+    check_growth(X, Y, T, x, y, names["DTHETA"], float(dtheta), (float(xinp), float(yinp)))
     return MlienResult(X, Y, T, R, XM, YM, x, y, XL, YL, centre, vo, math.acos(vo / float(ampv0)),
                        float(omega), float(ampv0), float(dtheta), trig)
 

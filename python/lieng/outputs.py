@@ -1,39 +1,206 @@
-"""Writing an output directory all at once.
+"""Output files and directories the commands own, written all at once.
 
-Every file of a run is written into a fresh temporary directory beside the
-target; only when all are written are they moved into place.  A failure
-leaves the target as it was: no half-written output directory.
+Rules (every command with ``-o``):
+
+* The output directory is checked *before* any computation
+  (:func:`check_outdir`): an empty path, a path at or under an existing
+  file, or an unwritable location is refused at once.
+* A command owns only the files it writes.  Their names are kept in
+  ``OUTDIR/.lieng-outputs`` (:data:`MANIFEST`).  An existing directory that
+  holds anything else (a user's notes, a directory named like an output) is
+  refused unless ``--force``; with ``--force`` the command writes beside
+  those entries and never deletes or enters them.
+* Every file of a run is written into a fresh temporary directory; only when
+  all are written are they moved into place (:func:`staged_outdir`), and the
+  outputs of an earlier run that this run does not write again (a plot of a
+  run with plots, now ``--no-plots``) are removed, since they are the
+  command's own.  A failure leaves the target as it was.
+* A single output file (``synth -o FILE``, :func:`check_outfile`) is
+  replaced only with ``--force`` and only if it is a regular file.
+
+Numbers written to CSV must be finite (:func:`write_csv` refuses NaN and
+infinities; a missing value is written as an empty cell, ``None``) and JSON
+is strict (:func:`dumps_json`).
 """
 
 from __future__ import annotations
 
 import csv
+import json
+import math
+import os
 import shutil
+import stat
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Iterable, Sequence
 
-__all__ = ["staged_outdir", "write_csv", "write_lines"]
+from .errors import LiengInputError
+
+__all__ = ["MANIFEST", "check_outdir", "check_outfile", "staged_outdir", "write_csv", "write_lines",
+           "dumps_json", "finite_json", "replace_file"]
+
+#: the list of files a command wrote into its output directory
+MANIFEST = ".lieng-outputs"
+
+
+def _existing_ancestor(p: Path, option: str, given) -> Path:
+    """The nearest existing ancestor of ``p``; it must be a writable directory."""
+    a = p
+    while True:
+        a = a.parent
+        try:
+            st = a.stat()
+        except FileNotFoundError:
+            if a == a.parent:               # pragma: no cover - the root exists
+                break
+            continue
+        except OSError as exc:
+            raise LiengInputError(f"{option} {given}: {a} cannot be used ({exc.strerror})") from None
+        if not stat.S_ISDIR(st.st_mode):
+            raise LiengInputError(f"{option} {given}: {a} is a file, not a directory")
+        if not os.access(a, os.W_OK | os.X_OK):
+            raise LiengInputError(f"{option} {given}: cannot create it: {a} is not writable")
+        return a
+    raise LiengInputError(f"{option} {given}: no existing directory above it")  # pragma: no cover
+
+
+def _owned(target: Path) -> set[str]:
+    try:
+        text = (target / MANIFEST).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return set()
+    return {ln for ln in text.splitlines() if ln and "/" not in ln and ln not in (".", "..")}
+
+
+def check_outdir(outdir, force: bool = False, option: str = "-o") -> Path:
+    """Check, before any computation, that the command may write ``outdir``.
+
+    Parameters
+    ----------
+    outdir : str or path-like
+        The output directory (created when missing, with its parents).
+    force : bool
+        Write into a directory that holds entries the command did not write
+        (they are left as they are).
+    option : str
+        The option's name, for the message.
+
+    Returns
+    -------
+    Path
+        ``outdir`` as a path.
+
+    Raises
+    ------
+    LiengInputError
+        An empty path; a path at or under a file; an unwritable location; an
+        existing directory with foreign entries and no ``force``.
+    """
+    given = "''" if str(outdir) == "" else outdir
+    if str(outdir) == "" or "\0" in str(outdir):
+        raise LiengInputError(f"{option} {given}: not a directory name")
+    target = Path(outdir)
+    try:
+        st = target.stat()
+    except FileNotFoundError:
+        _existing_ancestor(target.absolute(), option, given)
+        return target
+    except NotADirectoryError:
+        _existing_ancestor(target.absolute(), option, given)
+        return target                       # pragma: no cover - the ancestor check raised
+    except OSError as exc:
+        raise LiengInputError(f"{option} {given}: cannot be used ({exc.strerror})") from None
+    if not stat.S_ISDIR(st.st_mode):
+        raise LiengInputError(f"{option} {given}: exists and is not a directory")
+    if not os.access(target, os.W_OK | os.X_OK):
+        raise LiengInputError(f"{option} {given}: the directory is not writable")
+    foreign = sorted(set(os.listdir(target)) - _owned(target) - {MANIFEST})
+    if foreign and not force:
+        shown = ", ".join(foreign[:3]) + (", ..." if len(foreign) > 3 else "")
+        raise LiengInputError(f"{option} {given}: the directory holds {len(foreign)} entr"
+                              f"{'y' if len(foreign) == 1 else 'ies'} lieng did not write ({shown}): choose a "
+                              f"new directory, or give --force to write beside them")
+    return target
+
+
+def check_outfile(path, force: bool = False, option: str = "-o") -> Path:
+    """Check, before any computation, that a single output file may be written.
+
+    The file is replaced only with ``force`` and only when it is a regular
+    file (never a directory, a FIFO, a device or a socket).
+    """
+    given = "''" if str(path) == "" else path
+    if str(path) == "" or "\0" in str(path) or str(path).endswith(os.sep) or Path(path).name in ("", ".", ".."):
+        raise LiengInputError(f"{option} {given}: not a file name")
+    p = Path(path)
+    try:
+        st = p.stat()
+    except FileNotFoundError:
+        _existing_ancestor(p.absolute(), option, given)
+        return p
+    except NotADirectoryError:
+        _existing_ancestor(p.absolute(), option, given)
+        return p                            # pragma: no cover
+    except OSError as exc:
+        raise LiengInputError(f"{option} {given}: cannot be used ({exc.strerror})") from None
+    if stat.S_ISDIR(st.st_mode):
+        raise LiengInputError(f"{option} {given}: is a directory, not a file")
+    if not stat.S_ISREG(st.st_mode):
+        raise LiengInputError(f"{option} {given}: is not a regular file (lieng writes only regular files)")
+    if not force:
+        raise LiengInputError(f"{option} {given}: the file exists: give --force to replace it")
+    if not os.access(p.parent if str(p.parent) else Path("."), os.W_OK | os.X_OK):
+        raise LiengInputError(f"{option} {given}: its directory is not writable")
+    return p
+
+
+def replace_file(path, write) -> None:
+    """Write ``path`` through ``write(tmp_path)`` into a temporary file beside
+    it, then move it into place (never a half-written file)."""
+    p = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent if str(p.parent) else ".")
+    os.close(fd)
+    try:
+        write(Path(tmp))
+        os.replace(tmp, p)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
 
 
 @contextmanager
-def staged_outdir(outdir):
-    """Yield a temporary directory; on success move its files into ``outdir``."""
-    target = Path(outdir)
-    parent = target.resolve().parent
-    parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=parent))
+def staged_outdir(outdir, force: bool = False):
+    """Yield a temporary directory; on success move its files into ``outdir``.
+
+    ``outdir`` is checked again (:func:`check_outdir`); an entry of the
+    target that has an output's name but is a directory or was not written
+    by lieng (without ``force``) stops the move before anything is moved.
+    """
+    target = check_outdir(outdir, force=force)
+    base = target if target.is_dir() else _existing_ancestor(target.absolute(), "-o", outdir)
+    tmp = Path(tempfile.mkdtemp(prefix=".lieng-staging.", dir=base))
     try:
         yield tmp
+        names = sorted(f.name for f in tmp.iterdir())
+        owned = _owned(target) if target.is_dir() else set()
+        for name in names:
+            dest = target / name
+            if dest.is_dir() and not dest.is_symlink():
+                raise LiengInputError(f"-o {outdir}: {dest} is a directory: lieng does not replace it")
+            if os.path.lexists(dest) and name not in owned and not force:
+                raise LiengInputError(f"-o {outdir}: {dest} was not written by lieng: give --force to replace it")
         created = not target.exists()
         target.mkdir(parents=True, exist_ok=True)
         try:
-            for f in sorted(tmp.iterdir()):
-                dest = target / f.name
-                if dest.is_dir() and not dest.is_symlink():
-                    shutil.rmtree(dest)
-                f.replace(dest)
+            for name in names:
+                os.replace(tmp / name, target / name)
+            for name in sorted(owned - set(names)):
+                old = target / name
+                if old.is_symlink() or old.is_file():
+                    old.unlink()
+            (target / MANIFEST).write_text("".join(f"{n}\n" for n in names), encoding="utf-8")
         except BaseException:
             if created:
                 shutil.rmtree(target, ignore_errors=True)
@@ -48,9 +215,52 @@ def write_lines(path, lines: Iterable[str]) -> None:
 
 
 def write_csv(path, header: Sequence[str], rows: Iterable[Sequence]) -> None:
-    """Write a CSV with a header row; floats with 17 significant digits."""
+    """Write a CSV with a header row; floats with 17 significant digits.
+
+    ``None`` is written as an empty cell (a missing value); a NaN or an
+    infinity is refused (``ValueError``): the caller decides what a value it
+    cannot compute is, and says so.
+    """
     with open(path, "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh, lineterminator="\n")
         w.writerow(header)
-        for row in rows:
-            w.writerow([f"{v:.17g}" if isinstance(v, float) else v for v in row])
+        for k, row in enumerate(rows):
+            cells = []
+            for v in row:
+                if v is None:
+                    cells.append("")
+                elif isinstance(v, float):
+                    if not math.isfinite(v):
+                        raise ValueError(f"{Path(path).name}: row {k + 1}: non-finite value {v}")
+                    cells.append(f"{v:.17g}")
+                else:
+                    cells.append(v)
+            w.writerow(cells)
+
+
+def finite_json(obj):
+    """``obj`` with every non-finite float replaced by ``None`` (JSON null)."""
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {k: finite_json(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [finite_json(v) for v in obj]
+    try:
+        import numpy as np
+    except ImportError:  # pragma: no cover
+        return obj
+    if isinstance(obj, np.ndarray):
+        return finite_json(obj.tolist())
+    if isinstance(obj, np.floating):
+        return finite_json(float(obj))
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj
+
+
+def dumps_json(obj, **kw) -> str:
+    """Strict JSON (no NaN/Infinity): non-finite numbers become null."""
+    return json.dumps(finite_json(obj), allow_nan=False, **kw)

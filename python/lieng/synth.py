@@ -87,6 +87,10 @@ def _stribeck(s, fk, ds, vs):
     return math.copysign(fk + ds * math.exp(-abs(s) / vs), s) if s != 0 else 0.0
 
 
+#: the most cycles a record may have (about 10 minutes of record at the slowest drive)
+MAX_CYCLES = 2000
+
+
 def synthesize(effect: str = "none", seed: int | None = None, *, cycles: int = 16, noise: bool = True,
                strength: float | None = None) -> SynthRecord:
     """Generate a record with ``effect`` hidden in it.
@@ -110,6 +114,8 @@ def synthesize(effect: str = "none", seed: int | None = None, *, cycles: int = 1
     """
     if effect not in EFFECTS:
         raise ValueError(f"unknown effect {effect!r}: choose one of {', '.join(EFFECTS)}")
+    if not 1 <= int(cycles) <= MAX_CYCLES:
+        raise ValueError(f"cycles = {cycles}: from 1 to {MAX_CYCLES}")
     g = np.random.default_rng(seed)
     fn = float(g.uniform(6.0, 15.0))
     wn = 2 * math.pi * fn

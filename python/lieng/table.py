@@ -16,6 +16,7 @@ from typing import Sequence
 import numpy as np
 
 from .errors import LiengInputError
+from .inputs import read_text
 
 __all__ = ["read_columns", "read_table", "Table"]
 
@@ -41,6 +42,9 @@ class Table:
     def __len__(self):
         return len(self.lines)
 
+
+#: lines end at LF, CRLF or CR only (a form feed or a vertical tab is a character of the line)
+_LINES = re.compile(r"\r\n|\r|\n")
 
 _UNIT = re.compile(r"^\s*(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$")
 
@@ -101,19 +105,8 @@ def read_table(path, expect: str) -> Table:
         An unreadable file, a row with too few cells, a non-numeric or
         non-finite cell (naming its line and column).
     """
-    p = Path(path)
-    try:
-        if p.exists() and not p.is_file():
-            raise LiengInputError(f"{path}: not a regular file")
-        with open(p, newline="", encoding="utf-8") as fh:
-            text = fh.read()
-    except FileNotFoundError:
-        raise LiengInputError(f"{path}: no such file") from None
-    except (IsADirectoryError, UnicodeDecodeError):
-        raise LiengInputError(f"{path}: not a text table") from None
-    except OSError as e:
-        raise LiengInputError(f"{path}: cannot be read ({e.strerror or e})") from None
-    rows = text.splitlines()
+    text = read_text(path, what="table")
+    rows = _LINES.split(text)
     k0 = next((k for k, r in enumerate(rows) if r.strip()), None)
     if k0 is None:
         raise LiengInputError(f"{path}: empty file: expected a header {expect}")

@@ -66,7 +66,9 @@ HEAD: list[Card] = [
     Card("(I5)", ("NN",)),
 ]
 
-#: The columns of ``trc.csv`` (values after the EL / ELN shift: x = X - EL, xn = XN - ELN).
+#: The columns of ``trc.csv`` (values after the EL / ELN shift: x = X - EL, xn = XN - ELN).  An empty
+#: cell is a value undefined at that point (a warning names the points and the cause); the normal-mode
+#: columns (xn, vn, am, xxn, yyn, amtn) are empty when the trace has no normal mode.
 CSV_COLUMNS = ("i", "t", "x", "v", "xn", "vn", "am", "xx", "yy", "amt", "xxn", "yyn", "amtn")
 
 
@@ -151,6 +153,9 @@ class Deck:
         if self.vel == 0:
             raise LiengInputError(f"{self.locate('VEL')}: VEL = 0: the paper speed divides every time "
                                   f"T(I) = (T(I-1)*VEL + TC(I))/VEL")
+        if self.vel < 0:
+            raise LiengInputError(f"{self.locate('VEL')}: VEL = {self.vel:g}: the paper speed must be positive "
+                                  f"(with VEL < 0 the times T(I) = T(I-1) + NT(I)/100/VEL run backwards)")
         for name in ("OMNH", "OMNV"):
             if getattr(self, name.lower()) == 0:
                 raise LiengInputError(f"{self.locate(name)}: {name} = 0: the Lienard-plane velocity V/{name} "
@@ -162,6 +167,9 @@ class Deck:
             if self.nt[k - 1] == 0:
                 raise LiengInputError(f"{self.locate(f'NT({k})')}: NT({k}) = 0: points {k - 1} and {k} have the "
                                       f"same time, the velocity divides by zero")
+            if self.nt[k - 1] < 0:
+                raise LiengInputError(f"{self.locate(f'NT({k})')}: NT({k}) = {int(self.nt[k - 1])}: the paper "
+                                      f"distance from point {k - 1} must be positive (times must increase)")
 
     def values(self) -> dict:
         v = {"HO": self.ho, "HON": self.hon, "VEL": self.vel, "OMNH": self.omnh, "OMNV": self.omnv,
@@ -417,26 +425,41 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
         raise LiengInputError(f"{_where}: origin must be 'listing' or 'fit', not {origin!r}")
     with np.errstate(all="ignore"):
         (xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln,
-         status, where) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
+         status, where, xx0, xxn0) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
     if status != 0:
         raise _err_status(int(status), int(where), _where)
+    import warnings
+
     el_listing, eln_listing = float(el), float(eln) if has_eln else math.nan
-    if origin == "fit":
-        el_new = origin_fit(xx + el, yy, vln, int(iel) - 1)
-        if not math.isfinite(el_new):
-            raise LiengInputError(f"{_where}: origin 'fit': fewer than two constructed points on each side of "
-                                  f"the velocity sign change with 0.1-0.4 of the largest |VLN|")
-        xx = xx + el - el_new
-        xlnr = xlnr + el - el_new
-        amt = xx * omnh**2 / G_MM
-        el = el_new
-        if has_normal and has_eln:
-            eln_new = origin_fit(xxn + eln, yyn, vnln, int(ieln) - 1)
-            if math.isfinite(eln_new):
-                xxn = xxn + eln - eln_new
-                xnlnr = xnlnr + eln - eln_new
-                amtn = xxn * omnv**2 / G_MM
-                eln = eln_new
+    if origin == "listing" and not math.isfinite(el_listing):
+        raise LiengInputError(f"{_where}: EL is undefined: the reverse construction at points {int(iel)}-"
+                              f"{int(iel) + 1}, where the velocity changes sign, divides by zero (neighbouring "
+                              f"points with the same displacement, as in a quantised trace); --origin fit "
+                              f"estimates EL from the points around them")
+    with np.errstate(all="ignore"):
+        if origin == "fit":
+            el_new = origin_fit(xx0, yy, vln, int(iel) - 1)
+            if not math.isfinite(el_new):
+                raise LiengInputError(f"{_where}: origin 'fit': fewer than two constructed points on each side "
+                                      f"of the velocity sign change with 0.1-0.4 of the largest |VLN|")
+            el = el_new
+            xx = xx0 - el
+            xlnr = xs - el
+            amt = xx * (float(omnh) ** 2 / G_MM) if abs(omnh) < 1e150 else np.full_like(xx, np.inf)
+            if has_normal and has_eln:
+                eln_new = origin_fit(xxn0, yyn, vnln, int(ieln) - 1)
+                if math.isfinite(eln_new):
+                    eln = eln_new
+                    xxn = xxn0 - eln
+                    xnlnr = xn_arr - eln
+                    amtn = xxn * (float(omnv) ** 2 / G_MM) if abs(omnv) < 1e150 else np.full_like(xxn, np.inf)
+        if has_normal and has_eln and not math.isfinite(float(eln)):
+            warnings.warn(f"{_where}: ELN is undefined: the reverse construction at points {int(ieln)}-"
+                          f"{int(ieln) + 1}, where the normal velocity changes sign, divides by zero; the "
+                          f"normal-mode characteristic is not shifted", stacklevel=2)
+            has_eln, eln = 0, math.nan
+            xxn, xnlnr = xxn0.copy(), xn_arr.copy()
+            amtn = xxn * (float(omnv) ** 2 / G_MM) if abs(omnv) < 1e150 else np.full_like(xxn, np.inf)
     if not has_normal:
         nan = np.full_like(x, np.nan)
         xn_out, vn, vnln, am, xxn, yyn, amtn, xnlnr = (nan.copy() for _ in range(8))
@@ -444,15 +467,48 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
     else:
         xn_out = xn_arr
         if not has_eln:
-            import warnings
-
-            warnings.warn(f"{_where}: the normal velocity has no - to + sign change: ELN is undefined, the "
-                          f"normal-mode characteristic is not shifted", stacklevel=2)
+            if math.isfinite(float(eln)):
+                warnings.warn(f"{_where}: the normal velocity has no - to + sign change: ELN is undefined, the "
+                              f"normal-mode characteristic is not shifted", stacklevel=2)
             eln = math.nan
+    cols = {"x": xlnr, "v": v, "xx": xx, "yy": yy, "amt": amt}
+    if has_normal:
+        cols.update({"xn": xnlnr, "vn": vn, "am": am, "xxn": xxn, "yyn": yyn, "amtn": amtn})
+    _flag_missing(cols, _where)
     return TrcResult(t=t, x=xs, xn=xn_out, v=v, vn=vn, vln=vln, vnln=vnln, am=am, xx=xx, yy=yy, amt=amt,
                      xxn=xxn, yyn=yyn, amtn=amtn, xlnr=xlnr, xnlnr=xnlnr, el=float(el), eln=float(eln),
                      omnh=float(omnh), omnv=float(omnv) if has_normal else math.nan, has_normal=has_normal,
                      origin=origin, el_listing=el_listing, eln_listing=eln_listing if has_normal else math.nan)
+
+
+#: why a point's value can be undefined, per column (the messages of :func:`_flag_missing`)
+_MISSING_WHY = {
+    "xx": "the reverse construction divides by zero (neighbouring points with the same displacement)",
+    "xxn": "the reverse construction divides by zero (neighbouring points with the same normal displacement)",
+    "am": "AM = X/XN divides by zero (XN = 0)",
+}
+
+
+def _flag_missing(cols: dict, where: str) -> None:
+    """Set every non-finite value of the per-point columns to NaN (written as
+    an empty cell in trc.csv, ``UNDEF`` in the listing) and say so, once per
+    column, with the first points and the cause."""
+    import warnings
+
+    for name, a in cols.items():
+        bad = ~np.isfinite(a)
+        if not bad.any():
+            continue
+        a[bad] = np.nan
+        pts = np.flatnonzero(bad) + 1
+        shown = ", ".join(str(int(k)) for k in pts[:5]) + (", ..." if pts.size > 5 else "")
+        base = {"amt": "xx", "amtn": "xxn"}.get(name)
+        if base in cols and np.isnan(cols[base][bad]).all():
+            why = f"{base.upper()} is undefined there"
+        else:
+            why = _MISSING_WHY.get(name, "the arithmetic overflows")
+        warnings.warn(f"{where}: {name.upper()} is undefined at {pts.size} point(s) ({shown}): {why}; left empty "
+                      f"in trc.csv", stacklevel=3)
 
 
 def belfit(x, y):

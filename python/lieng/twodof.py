@@ -209,6 +209,11 @@ def onedof(params: RigParams | None = None, load_correction: bool = False, **kw)
                       float(preload), float(v0))
 
 
+#: the shortest run the metrics can read (s): the steady state is its last half, and the dominant
+#: frequency is searched above 0.05 Hz, which that half must resolve
+T_END_MIN = 40.0
+
+
 def _dominant(sig, dt, fmin=0.05):
     s = sig - sig.mean()
     w = np.hanning(s.size)
