@@ -36,11 +36,7 @@ def _run_lieng1(args) -> int:
 
     check_outdir(args.outdir, args.force)
     deck = read_deck(args.deck, program="lieng1")
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        res = run_deck(deck, lookup=args.lookup)
-    for w in caught:
-        print(f"lieng: warning: {w.message}", file=sys.stderr)
+    res = run_deck(deck, lookup=args.lookup)
     listing = lieng1_listing(deck, res)
     with staged_outdir(args.outdir, args.force) as tmp:
         write_lines(tmp / "listing.txt", listing)
@@ -91,17 +87,13 @@ def _run_mlien(args) -> int:
 def _is_table(path) -> bool:
     """A delimited table with a header naming a time column (comma, TAB,
     semicolon or whitespace), rather than a card deck.  A path that is not a
-    readable regular file counts as a table: the reader names the problem
-    (and a FIFO is never opened)."""
+    readable regular file is an error here (a FIFO is never opened)."""
     import re
 
     from .inputs import head
 
     p = Path(path)
-    try:
-        first = re.split(r"\r\n|\r|\n", head(p))[0]
-    except LiengInputError:
-        return True
+    first = re.split(r"\r\n|\r|\n", head(p))[0]
     if p.suffix.lower() in (".csv", ".tsv"):
         return True
     cells = [c.strip().lower() for c in re.split(r"[,;\t]|\s+", first) if c.strip()]
@@ -116,24 +108,20 @@ def _run_trc(args) -> int:
     from .trc import CSV_COLUMNS, read_csv, trc
 
     check_outdir(args.outdir, args.force)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        if _is_table(args.deck):
-            if args.omnh is None:
-                raise LiengInputError(f"{args.deck}: a CSV trace needs --omnh (natural frequency of the "
-                                      f"horizontal mode, rad/s)")
-            t, x, xn = read_csv(args.deck)
-            if xn is not None and args.omnv is None:
-                raise LiengInputError(f"{args.deck}: column xn needs --omnv (natural frequency of the normal "
-                                      f"mode, rad/s)")
-            res = trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin, _where=str(args.deck))
-        else:
-            if args.omnh is not None or args.omnv is not None:
-                raise LiengInputError("--omnh/--omnv are for CSV input: a TRC deck gives them on card 2")
-            deck = read_deck(args.deck, program="trc")
-            res = deck.run(origin=args.origin)
-    for w in caught:
-        print(f"lieng: warning: {w.message}", file=sys.stderr)
+    if _is_table(args.deck):
+        if args.omnh is None:
+            raise LiengInputError(f"{args.deck}: a CSV trace needs --omnh (natural frequency of the "
+                                  f"horizontal mode, rad/s)")
+        t, x, xn = read_csv(args.deck)
+        if xn is not None and args.omnv is None:
+            raise LiengInputError(f"{args.deck}: column xn needs --omnv (natural frequency of the normal "
+                                  f"mode, rad/s)")
+        res = trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin, _where=str(args.deck))
+    else:
+        if args.omnh is not None or args.omnv is not None:
+            raise LiengInputError("--omnh/--omnv are for CSV input: a TRC deck gives them on card 2")
+        deck = read_deck(args.deck, program="trc")
+        res = deck.run(origin=args.origin)
     listing = trc_listing(res)
     cols = res.columns()
     with staged_outdir(args.outdir, args.force) as tmp:
@@ -466,10 +454,23 @@ def main(argv=None) -> int:
     except SystemExit as exc:               # --help (0) or a usage error (2, one line already printed)
         return int(exc.code or 0) if isinstance(exc.code, (int, type(None))) else 2
     # numerical warnings are not messages for the user: every output is
-    # checked for finiteness where it is written, and bad input gets one line
-    with warnings.catch_warnings(), np.errstate(all="ignore"):
+    # checked for finiteness where it is written, and bad input gets one line.
+    # The program's own warnings are printed, one line each, after a run that
+    # succeeds (an error is the only line of a failed run).
+    with warnings.catch_warnings(record=True) as caught, np.errstate(all="ignore"):
+        warnings.simplefilter("always")
         warnings.simplefilter("ignore", RuntimeWarning)
-        return _dispatch(parser, args)
+        warnings.simplefilter("ignore", DeprecationWarning)
+        warnings.simplefilter("ignore", PendingDeprecationWarning)
+        code = _dispatch(parser, args)
+    if code == 0:
+        seen = set()
+        for w in caught:
+            msg = " ".join(str(w.message).split())
+            if issubclass(w.category, UserWarning) and msg not in seen:
+                seen.add(msg)
+                print(f"lieng: warning: {msg}", file=sys.stderr)
+    return code
 
 
 def _dispatch(parser, args) -> int:
