@@ -20,10 +20,10 @@ gfortran:
 	  echo "gfortran not found: installing it with apt-get"; \
 	  $(SUDO) apt-get update -qq && $(SUDO) DEBIAN_FRONTEND=noninteractive apt-get install -y -qq gfortran; }
 
-$(VENV)/.deps: | gfortran
+$(VENV)/.deps: Makefile | gfortran
 	$(PYTHON) -m venv $(VENV)
 	$(VPIP) install -q --upgrade pip
-	$(VPIP) install -q "meson-python>=0.15" "meson>=1.1" ninja "numpy>=2.0" "scipy>=1.10" "matplotlib>=3.7" "pytest>=7"
+	$(VPIP) install -q "meson-python>=0.15" "meson>=1.1" ninja "numpy>=2.0" "scipy>=1.10" "matplotlib>=3.7" "pytest>=7" "hypothesis>=6.100"
 	touch $@
 
 venv: $(VENV)/.deps

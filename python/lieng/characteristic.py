@@ -61,6 +61,10 @@ class Centre:
     ymdl: float
 
 
+#: the largest magnitude of a characteristic's value (mm)
+MAX_ABS = 1e12
+
+
 def check_characteristic(xchl, ychl, locate: Locate = api_locator) -> tuple[np.ndarray, np.ndarray]:
     """Check a characteristic line before it reaches the compiled core.
 
@@ -80,6 +84,11 @@ def check_characteristic(xchl, ychl, locate: Locate = api_locator) -> tuple[np.n
         bad = np.flatnonzero(~np.isfinite(arr))
         if bad.size:
             raise LiengInputError(f"{locate(kind, int(bad[0]) + 1)}: {arr[bad[0]]} is not a finite number")
+        big = np.flatnonzero(np.abs(arr) > MAX_ABS)
+        if big.size:
+            raise LiengInputError(f"{locate(kind, int(big[0]) + 1)}: {kind}({int(big[0]) + 1}) = {arr[big[0]]:g} is "
+                                  f"out of range: a characteristic's values (mm) are at most {MAX_ABS:g} in "
+                                  f"magnitude, so that its slopes and trajectories stay finite")
     eq = np.flatnonzero(np.diff(x) == 0.0)
     if eq.size:
         j = int(eq[0]) + 1

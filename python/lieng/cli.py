@@ -261,9 +261,24 @@ def _figures(args) -> int:
     return 0
 
 
+#: the largest preload (N) of `lieng twodof`
+PRELOAD_MAX = 10_000.0
+
+
+def _all_finite(obj) -> bool:
+    """No NaN or infinity anywhere in a nested result (dicts, lists, numbers)."""
+    if isinstance(obj, dict):
+        return all(_all_finite(v) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return all(_all_finite(v) for v in obj)
+    if isinstance(obj, float):
+        return math.isfinite(obj)
+    return True
+
+
 def _twodof(args) -> int:
     from .outputs import check_outdir, dumps_json
-    from .twodof import T_END_MIN, compare, write_outputs
+    from .twodof import T_END_MAX, T_END_MIN, compare, write_outputs
 
     if args.outdir is not None:
         check_outdir(args.outdir, args.force)
@@ -271,13 +286,21 @@ def _twodof(args) -> int:
         v = getattr(args, name)
         if not (v > 0 and v < float("inf")):
             raise LiengInputError(f"--{name.replace('_', '-')} {v}: must be a positive number")
-    if not T_END_MIN <= args.t_end <= 36000:
-        raise LiengInputError(f"--t-end {args.t_end:g}: from {T_END_MIN:g} to 36000 s (the steady state is read "
+    if not T_END_MIN <= args.t_end <= T_END_MAX:
+        raise LiengInputError(f"--t-end {args.t_end:g}: from {T_END_MIN:g} to {T_END_MAX:g} s (the steady state is read "
                               f"after the first {T_END_MIN / 2:g} s)")
+    if args.preload > PRELOAD_MAX:
+        raise LiengInputError(f"--preload {args.preload:g}: at most {PRELOAD_MAX:g} N (the paper's rig: 80 N)")
     keep: dict = {}
     if args.belt is not None and not (0 < args.belt < 1):
         raise LiengInputError(f"--belt {args.belt}: the belt velocity must be between 0 and 1 m/s")
+    if args.belt is None and not 2 * math.pi * 0.08 * args.rpm / 60 < 1:
+        raise LiengInputError(f"--rpm {args.rpm:g}: the belt at r2 = 0.08 m must be slower than 1 m/s "
+                              f"(rpm < {60 / (2 * math.pi * 0.08):.4g})")
     res = compare(preload=args.preload, rpm=args.rpm, t_end=args.t_end, keep=keep, belt=args.belt)
+    if not _all_finite(res):
+        raise LiengInputError(f"--preload {args.preload:g}, --rpm {args.rpm:g}: the simulation leaves the range of "
+                              f"the model (a non-finite result); use values nearer the paper's (80 N, 0.1 rpm)")
     if args.outdir is not None:
         from .outputs import staged_outdir
 

@@ -45,7 +45,23 @@ def graf(curves: Sequence[tuple], path, *, xlabel: str, ylabel: str, title: str,
     xlim : (float, float), optional
         Abscissa limits (points outside are still drawn, off the axes).
     """
+    p = Path(path)
     fig, ax = plt.subplots(figsize=(8.2, 5.6), dpi=110)
+    try:
+        _draw(fig, ax, curves, p, xlabel, ylabel, title, caption, labels, styles, equal, xlim)
+    except (ValueError, OverflowError, np.linalg.LinAlgError) as exc:
+        # matplotlib's transforms fail on axis ranges near the largest doubles
+        import warnings
+
+        warnings.warn(f"{p.name} not drawn: the values are too large to plot ({type(exc).__name__})", stacklevel=2)
+        if p.exists():
+            p.unlink()
+    finally:
+        plt.close(fig)
+    return p
+
+
+def _draw(fig, ax, curves, p, xlabel, ylabel, title, caption, labels, styles, equal, xlim) -> None:
     for i, (x, y) in enumerate(curves):
         kw = dict(styles[i]) if styles is not None and i < len(styles) else {"lw": 0.9}
         if labels is not None and i < len(labels) and labels[i]:
@@ -65,10 +81,7 @@ def graf(curves: Sequence[tuple], path, *, xlabel: str, ylabel: str, title: str,
     if caption:
         fig.text(0.01, 0.005, caption, fontsize=7, color="0.3", ha="left", va="bottom")
     fig.tight_layout(rect=(0, 0.03, 1, 1))
-    p = Path(path)
     fig.savefig(p)
-    plt.close(fig)
-    return p
 
 
 def lieng1_plots(result, outdir) -> list[Path]:

@@ -105,6 +105,8 @@ def check_outdir(outdir, force: bool = False, option: str = "-o") -> Path:
     try:
         st = target.stat()
     except FileNotFoundError:
+        if os.path.islink(target):
+            raise LiengInputError(f"{option} {given}: a symbolic link to nothing ({os.readlink(target)})") from None
         _existing_ancestor(target.absolute(), option, given)
         return target
     except NotADirectoryError:
@@ -116,6 +118,10 @@ def check_outdir(outdir, force: bool = False, option: str = "-o") -> Path:
         raise LiengInputError(f"{option} {given}: exists and is not a directory")
     if not os.access(target, os.W_OK | os.X_OK):
         raise LiengInputError(f"{option} {given}: the directory is not writable")
+    man = target / MANIFEST
+    if os.path.lexists(man) and (man.is_symlink() or not man.is_file()):
+        raise LiengInputError(f"{option} {given}: {man} is not lieng's list of outputs (not a regular file): "
+                              f"choose a new directory")
     foreign = sorted(set(os.listdir(target)) - _owned(target) - {MANIFEST})
     if foreign and not force:
         shown = ", ".join(foreign[:3]) + (", ..." if len(foreign) > 3 else "")
@@ -138,7 +144,13 @@ def check_outfile(path, force: bool = False, option: str = "-o") -> Path:
     try:
         st = p.stat()
     except FileNotFoundError:
-        _existing_ancestor(p.absolute(), option, given)
+        if os.path.islink(p):
+            raise LiengInputError(f"{option} {given}: a symbolic link to nothing ({os.readlink(p)})") from None
+        parent = p.absolute().parent
+        if not parent.is_dir():
+            raise LiengInputError(f"{option} {given}: the directory {p.parent} does not exist")
+        if not os.access(parent, os.W_OK | os.X_OK):
+            raise LiengInputError(f"{option} {given}: the directory {p.parent} is not writable")
         return p
     except NotADirectoryError:
         _existing_ancestor(p.absolute(), option, given)
@@ -164,6 +176,9 @@ def replace_file(path, write) -> None:
     os.close(fd)
     try:
         write(Path(tmp))
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)       # as open() would have made it (mkstemp makes 0600)
         os.replace(tmp, p)
     finally:
         if os.path.exists(tmp):

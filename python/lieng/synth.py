@@ -87,8 +87,8 @@ def _stribeck(s, fk, ds, vs):
     return math.copysign(fk + ds * math.exp(-abs(s) / vs), s) if s != 0 else 0.0
 
 
-#: the most cycles a record may have (about 10 minutes of record at the slowest drive)
-MAX_CYCLES = 2000
+#: the most cycles a record may have (the slowest effect, static ageing, takes about 30 s for 500)
+MAX_CYCLES = 500
 
 
 def synthesize(effect: str = "none", seed: int | None = None, *, cycles: int = 16, noise: bool = True,

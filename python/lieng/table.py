@@ -22,6 +22,8 @@ __all__ = ["read_columns", "read_table", "Table"]
 
 #: the longest line read (characters): a longer one is not a table row
 MAX_LINE = 100_000
+#: the most data rows a table may have (42 minutes at 2 kHz)
+MAX_ROWS = 5_000_000
 #: the largest magnitude a measured value may have (squares and sums of it
 #: must stay finite in double precision)
 MAX_ABS = 1e100
@@ -107,6 +109,9 @@ def read_table(path, expect: str) -> Table:
     """
     text = read_text(path, what="table")
     rows = _LINES.split(text)
+    if len(rows) > MAX_ROWS + 1 and sum(1 for r in rows if r.strip()) > MAX_ROWS + 1:
+        raise LiengInputError(f"{path}: more than {MAX_ROWS} rows: split the record (lieng reads at most "
+                              f"{MAX_ROWS} rows)")
     k0 = next((k for k, r in enumerate(rows) if r.strip()), None)
     if k0 is None:
         raise LiengInputError(f"{path}: empty file: expected a header {expect}")

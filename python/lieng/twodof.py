@@ -212,6 +212,8 @@ def onedof(params: RigParams | None = None, load_correction: bool = False, **kw)
 #: the shortest run the metrics can read (s): the steady state is its last half, and the dominant
 #: frequency is searched above 0.05 Hz, which that half must resolve
 T_END_MIN = 40.0
+#: the longest run the command line makes (s): an hour of rig time, 3.6e6 samples of 1 ms
+T_END_MAX = 3600.0
 
 
 def _dominant(sig, dt, fmin=0.05):
@@ -272,7 +274,7 @@ def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, param
 def write_outputs(res: dict, sims: dict, outdir) -> None:
     """Plots (angle, forces, spectrum: 2-DoF beside 1-DoF, the paper's values
     marked) and ``twodof.json`` into ``outdir``."""
-    import json
+    from .outputs import dumps_json
     from pathlib import Path
 
     import matplotlib
@@ -283,7 +285,7 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
     from .graf import finish
 
     out = Path(outdir)
-    (out / "twodof.json").write_text(json.dumps(res, indent=2) + "\n", encoding="utf-8")
+    (out / "twodof.json").write_text(dumps_json(res, indent=2) + "\n", encoding="utf-8")
     cap = (f"lieng twodof: dual-pin-on-disc rig (seed 001), Fn = {res['preload_n']:g} N, {res['rpm']:g} rpm; "
            f"2-DoF reconstruction vs the thesis's 1-DoF model (constant load)")
     two, one = sims["2-DoF"], sims["1-DoF"]

@@ -5,13 +5,13 @@ cycle-by-cycle residuals of the baseline, and the evidence table."""
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
 import numpy as np
 
 from .baseline import slip_friction
+from ..outputs import dumps_json
 from .evidence import CANDIDATES
 from .extend import METRIC
 
@@ -20,14 +20,25 @@ __all__ = ["write_outputs", "summary_lines", "PLOTS"]
 PLOTS = ("trace.png", "characteristic.png", "residuals.png")
 
 
+def _f(v, spec: str) -> str:
+    """``v`` formatted with ``spec``, or ``n/a`` when it is missing or not finite."""
+    try:
+        v = float(v)
+    except (TypeError, ValueError):
+        return "n/a"
+    return format(v, spec) if math.isfinite(v) else "n/a"
+
+
 def summary_lines(d, source: str) -> list:
     """The terminal summary (also the head of report.md)."""
-    out = [f"{source}: effect {d.effect}" + (f"; gain {d.gain:.2f} (90 % interval {d.gain_interval[0]:.2f} to "
-                                              f"{d.gain_interval[1]:.2f})" if d.effect not in ("none", "no_stick_slip")
+    gi = d.gain_interval or (None, None)
+    out = [f"{source}: effect {d.effect}" + (f"; gain {_f(d.gain, '.2f')} (90 % interval {_f(gi[0], '.2f')} to "
+                                              f"{_f(gi[1], '.2f')})" if d.effect not in ("none", "no_stick_slip")
                                               else "")]
     out.append(f"  {d.reason}")
     if d.effect != "no_stick_slip":
-        out.append(f"  natural frequency {d.fn:.4g} Hz ({d.fn_source}); {d.n_cycles} cycles; drop D = {d.drop:.4g} mm")
+        out.append(f"  natural frequency {_f(d.fn, '.4g')} Hz ({d.fn_source}); {d.n_cycles} cycles; drop D = "
+                   f"{_f(d.drop, '.4g')} mm")
     for w in d.warnings:
         out.append(f"  warning: {w}")
     for n in d.notes:
@@ -39,7 +50,7 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
     """Write diagnosis.json, report.md and (with ``plots``) the PNGs into
     ``outdir`` (a staged directory).  Returns the file names written."""
     out = Path(outdir)
-    js = json.dumps(d.to_json(), indent=2, allow_nan=False)
+    js = dumps_json(d.to_json(), indent=2)
     (out / "diagnosis.json").write_text(js + "\n", encoding="utf-8")
     written = ["diagnosis.json", "report.md"]
     lines = [f"# lieng diagnose: {source}", "", *[f"    {s}" for s in summary_lines(d, source)], ""]
@@ -56,9 +67,10 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
             if not r or not r.get("applicable"):
                 lines.append(f"| {k} | not applicable to this record | | | | | | | | |")
                 continue
-            lines.append(f"| {k} | {r['statistic']:.4g} | {r['null_mean']:.4g} | {r['null_sd']:.3g} | "
-                         f"{(r['se'] or 0):.3g} | {r['effect_size']:+.4g} | {r['z']:.2f} | {r['p']:.2g} | "
-                         f"{r['margin']} | {'**yes**' if r['named'] else 'no'} |")
+            lines.append(f"| {k} | {_f(r['statistic'], '.4g')} | {_f(r['null_mean'], '.4g')} | "
+                         f"{_f(r['null_sd'], '.3g')} | {_f(r['se'] or 0, '.3g')} | {_f(r['effect_size'], '+.4g')} | "
+                         f"{_f(r['z'], '.2f')} | {_f(r['p'], '.2g')} | {r['margin']} | "
+                         f"{'**yes**' if r['named'] else 'no'} |")
         lines.append("")
     if d.goodness:
         lines += ["## Goodness of fit of the baseline", "",
@@ -89,10 +101,11 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
         lines += ["## Named effects and gains", "", f"Metric: {METRIC}.", "",
                   "| effect | size | 95 % interval | p | gain | 90 % interval |", "|---|---|---|---|---|---|"]
         for e in d.effects:
-            iv = e.get("interval_95") or [math.nan, math.nan]
-            gi = e.get("gain_interval_90") or [math.nan, math.nan]
-            lines.append(f"| {e['effect']} | {e['effect_size']:+.4g} | {iv[0]:+.3g} to {iv[1]:+.3g} | {e['p']:.2g} | "
-                         f"{e['gain']:.3f} | {gi[0]:.2f} to {gi[1]:.2f} |")
+            iv = e.get("interval_95") or [None, None]
+            gi = e.get("gain_interval_90") or [None, None]
+            lines.append(f"| {e['effect']} | {_f(e['effect_size'], '+.4g')} | {_f(iv[0], '+.3g')} to "
+                         f"{_f(iv[1], '+.3g')} | {_f(e['p'], '.2g')} | {_f(e['gain'], '.3f')} | {_f(gi[0], '.2f')} to "
+                         f"{_f(gi[1], '.2f')} |")
         lines.append("")
     if d.baseline is not None:
         b = d.baseline
