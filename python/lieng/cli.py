@@ -13,7 +13,6 @@ import math
 import os
 import re
 import sys
-import warnings
 from pathlib import Path
 
 from .errors import LiengInputError
