@@ -28,6 +28,17 @@ from .trc import TrcResult, trc
 
 __version__ = "0.1.0"
 
+#: the analyses, imported on first use: ``lieng.cycles.find_cycles(...)``
+_SUBMODULES = ("cycles", "twodof", "diagnose", "figures", "synth", "outputs", "inputs", "table")
+
+
+def __getattr__(name):
+    if name in _SUBMODULES:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'lieng' has no attribute {name!r}")
+
 __all__ = [
     "LiengInputError",
     "Lieng1Result",

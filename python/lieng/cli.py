@@ -457,7 +457,8 @@ def build_parser() -> argparse.ArgumentParser:
                                     "the section it reproduces.")
     fg.add_argument("-o", "--outdir", required=True, help="output directory")
     fg.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
-    fg.add_argument("--cards", default="cards", help="the project's cards directory (default: ./cards)")
+    fg.add_argument("--cards", default=None, help="a directory laid out as the project's cards/ (default: the "
+                    "decks installed with lieng)")
     fg.add_argument("--only", nargs="+", metavar="FIG", help="only these figures (e.g. 2.27 A9-7)")
     fg.add_argument("-q", "--quiet", action="store_true")
     return p

@@ -17,7 +17,10 @@ import numpy as np
 from .cards import read_deck
 from .errors import LiengInputError
 
-__all__ = ["FIGURES", "figures"]
+__all__ = ["FIGURES", "figures", "CARDS"]
+
+#: the demo and figure decks installed with the package (the project's cards/)
+CARDS = Path(__file__).resolve().parent / "cards"
 
 #: figure -> (deck(s) in the cards directory, caption)
 FIGURES = {
@@ -149,7 +152,7 @@ def _a9_7(cards, name, path, caption):
     return _save(fig, path, caption)
 
 
-def figures(outdir, cards="cards", only=None) -> list[Path]:
+def figures(outdir, cards=None, only=None) -> list[Path]:
     """Regenerate the theoretical figures into ``outdir``.
 
     Parameters
@@ -157,7 +160,8 @@ def figures(outdir, cards="cards", only=None) -> list[Path]:
     outdir : path-like
         An existing directory.
     cards : path-like, optional
-        The project's ``cards`` directory (with ``figures/``).
+        A directory laid out as the project's ``cards/`` (with ``figures/``);
+        by default the decks installed with the package (:data:`CARDS`).
     only : iterable of str, optional
         Figure names (keys of :data:`FIGURES`); all by default.
 
@@ -166,15 +170,15 @@ def figures(outdir, cards="cards", only=None) -> list[Path]:
     list of Path
         The PNGs written, ``fig_<name>.png``.
     """
-    cards, outdir = Path(cards), Path(outdir)
+    cards, outdir = (CARDS if cards is None else Path(cards)), Path(outdir)
     names = list(FIGURES) if only is None else list(only)
     for n in names:
         if n not in FIGURES:
             raise LiengInputError(f"figure {n!r}: choose from {', '.join(FIGURES)}")
         for d in FIGURES[n][0]:
             if not (cards / d).is_file():
-                raise LiengInputError(f"{cards / d}: deck of Fig. {n} not found (run from the project's top "
-                                      f"directory or give --cards; cards/make_figure_decks.py writes them)")
+                raise LiengInputError(f"{cards / d}: deck of Fig. {n} not found (--cards names a directory like "
+                                      f"the project's cards/, with figures/; cards/make_figure_decks.py writes them)")
     out = []
     for n in names:
         decks, cap = FIGURES[n]
