@@ -306,3 +306,20 @@ def test_warnings_are_not_printed_before_an_error(tmp_path, capsys):
     p.write_text("\n".join(put(p.read_text().splitlines(), 3, 46, 55, "1.0E18")) + "\n")
     code, _, err = run(["run", "lieng1", p, "-o", tmp_path / "o"], capsys)
     one_line_error(code, err, "DTHETA")
+
+
+@pytest.mark.parametrize("args,needle", [
+    (["run", "lieng1", str(LIENG1), "-o", "o", "--omnh", "5"], "--omnh"),
+    (["run", "mlien", str(MLIEN), "-o", "o", "--origin", "fit"], "--origin"),
+    (["run", "trc", str(TRC), "-o", "o", "--lookup", "fast"], "--lookup"),
+    (["twodof", "--belt", "0.008", "--rpm", "0.1"], "--belt and --rpm"),
+])
+def test_options_that_do_not_apply_are_refused(args, needle, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code, _, err = run(args, capsys)
+    one_line_error(code, err, needle)
+    assert not (tmp_path / "o").exists()
+
+
+def test_version(capsys):
+    assert run(["--version"], capsys)[:2] == (0, f"lieng {__import__('lieng').__version__}\n")

@@ -26,6 +26,20 @@ UNEXPECTED = "unexpected failure on this input"
 CHAR_PROGRAMS = ("lieng1", "mlien")
 
 
+def _reject_inapplicable(args) -> None:
+    """One line for an option given to a program it does not apply to."""
+    prog = args.program
+    if prog != "trc":
+        for opt, val in (("--omnh", args.omnh), ("--omnv", args.omnv)):
+            if val is not None:
+                raise LiengInputError(f"{opt}: applies to run trc only (a {prog} deck has no natural frequency)")
+        if args.origin != "listing":
+            raise LiengInputError(f"--origin {args.origin}: applies to run trc only")
+    elif args.lookup != "listing":
+        raise LiengInputError(f"--lookup {args.lookup}: applies to run lieng1 and run mlien only (TRC has no "
+                              f"POINT step)")
+
+
 def _run_lieng1(args) -> int:
     from .cards import read_deck
     from .graf import lieng1_plots
@@ -256,7 +270,8 @@ def _figures(args) -> int:
     with staged_outdir(args.outdir, args.force) as tmp:
         paths = figures(tmp, cards=args.cards, only=args.only)
     if not args.quiet:
-        print(f"wrote {len(paths)} figures to {args.outdir}/: " + ", ".join(p.name for p in paths))
+        print(f"wrote {len(paths)} figure{'' if len(paths) == 1 else 's'} to {args.outdir}/: "
+              + ", ".join(p.name for p in paths))
     return 0
 
 
@@ -281,6 +296,11 @@ def _twodof(args) -> int:
 
     if args.outdir is not None:
         check_outdir(args.outdir, args.force)
+    if args.belt is not None and args.rpm is not None:
+        raise LiengInputError("--belt and --rpm: give one of them (the belt velocity, or the disc speed at r2 = "
+                              "0.08 m)")
+    if args.rpm is None:
+        args.rpm = 0.1
     for name in ("preload", "rpm", "t_end"):
         v = getattr(args, name)
         if not (v > 0 and v < float("inf")):
@@ -367,6 +387,9 @@ def build_parser() -> argparse.ArgumentParser:
         prog="lieng",
         description="Antoniou's 1971 Lienard-plane stick-slip programs, restored.",
     )
+    from . import __version__
+
+    p.add_argument("--version", action="version", version=f"lieng {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
 
@@ -444,7 +467,7 @@ def build_parser() -> argparse.ArgumentParser:
                                     "model) and the thesis's 1-DoF model of the same rig; print the paper's "
                                     "Table 3/4 quantities beside the paper's values.")
     td.add_argument("--preload", type=float, default=80.0, help="total normal preload of both pins (N)")
-    td.add_argument("--rpm", type=float, default=0.1, help="disc speed (rpm; belt at r2 = 0.08 m)")
+    td.add_argument("--rpm", type=float, default=None, help="disc speed (rpm; belt at r2 = 0.08 m; default 0.1)")
     td.add_argument("--t-end", type=float, default=600.0, help="simulated time (s, default 600 as the tests)")
     td.add_argument("--belt", type=float, help="belt velocity (m/s) instead of the disc at --rpm and r2 = 0.08 m "
                     "(e.g. 0.00838, sec. 5's value)")
@@ -499,6 +522,7 @@ def main(argv=None) -> int:
 def _dispatch(parser, args) -> int:
     try:
         if args.command == "run":
+            _reject_inapplicable(args)
             return {"lieng1": _run_lieng1, "mlien": _run_mlien, "trc": _run_trc}[args.program](args)
         handlers = {"cycles": _cycles, "sweep": _sweep, "diagnose": _diagnose, "synth": _synth,
                     "figures": _figures, "twodof": _twodof}
