@@ -323,3 +323,22 @@ def test_options_that_do_not_apply_are_refused(args, needle, tmp_path, capsys, m
 
 def test_version(capsys):
     assert run(["--version"], capsys)[:2] == (0, f"lieng {__import__('lieng').__version__}\n")
+
+
+def test_force_never_replaces_a_foreign_file_with_an_outputs_name(tmp_path, capsys):
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "listing.txt").write_text("my own listing\n")
+    code, _, err = run(["run", "lieng1", LIENG1, "-o", out, "--no-plots", "--force"], capsys)
+    one_line_error(code, err, "not written by lieng")
+    assert (out / "listing.txt").read_text() == "my own listing\n"
+    assert sorted(p.name for p in out.iterdir()) == ["listing.txt"]
+
+
+def test_synth_does_not_write_through_a_symlink(tmp_path, capsys):
+    target = tmp_path / "target.csv"
+    target.write_text("mine\n")
+    (tmp_path / "link").symlink_to(target)
+    code, _, err = run(["synth", "--force", "-o", tmp_path / "link"], capsys)
+    one_line_error(code, err, "symbolic link")
+    assert target.read_text() == "mine\n" and (tmp_path / "link").is_symlink()

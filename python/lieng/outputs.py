@@ -9,7 +9,8 @@ Rules (every command with ``-o``):
   ``OUTDIR/.lieng-outputs`` (:data:`MANIFEST`).  An existing directory that
   holds anything else (a user's notes, a directory named like an output) is
   refused unless ``--force``; with ``--force`` the command writes beside
-  those entries and never deletes or enters them.
+  those entries and never deletes, replaces or enters them (an entry with
+  the name of an output that lieng did not write stops the run).
 * Every file of a run is written into a fresh temporary directory; only when
   all are written are they moved into place (:func:`staged_outdir`), and the
   outputs of an earlier run that this run does not write again (a plot of a
@@ -135,12 +136,15 @@ def check_outfile(path, force: bool = False, option: str = "-o") -> Path:
     """Check, before any computation, that a single output file may be written.
 
     The file is replaced only with ``force`` and only when it is a regular
-    file (never a directory, a FIFO, a device or a socket).
+    file (never a directory, a FIFO, a device, a socket or a symbolic link).
     """
     given = "''" if str(path) == "" else path
     if str(path) == "" or "\0" in str(path) or str(path).endswith(os.sep) or Path(path).name in ("", ".", ".."):
         raise LiengInputError(f"{option} {given}: not a file name")
     p = Path(path)
+    if os.path.islink(p):
+        raise LiengInputError(f"{option} {given}: is a symbolic link: name the file itself (lieng does not write "
+                              f"through links)")
     try:
         st = p.stat()
     except FileNotFoundError:
@@ -191,7 +195,7 @@ def staged_outdir(outdir, force: bool = False):
 
     ``outdir`` is checked again (:func:`check_outdir`); an entry of the
     target that has an output's name but is a directory or was not written
-    by lieng (without ``force``) stops the move before anything is moved.
+    by lieng stops the move before anything is moved.
     """
     target = check_outdir(outdir, force=force)
     base = target if target.is_dir() else _existing_ancestor(target.absolute(), "-o", outdir)
@@ -204,8 +208,9 @@ def staged_outdir(outdir, force: bool = False):
             dest = target / name
             if dest.is_dir() and not dest.is_symlink():
                 raise LiengInputError(f"-o {outdir}: {dest} is a directory: lieng does not replace it")
-            if os.path.lexists(dest) and name not in owned and not force:
-                raise LiengInputError(f"-o {outdir}: {dest} was not written by lieng: give --force to replace it")
+            if os.path.lexists(dest) and name not in owned:
+                raise LiengInputError(f"-o {outdir}: {dest} was not written by lieng, and lieng replaces only its "
+                                      f"own outputs: move it away or choose another directory")
         created = not target.exists()
         target.mkdir(parents=True, exist_ok=True)
         try:

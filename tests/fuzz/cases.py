@@ -734,12 +734,14 @@ def apply_table_mutations(header: list, units: list, cols: list, sep: str, muts:
         if op == "bad_cell" and n:
             c = m["col"] % ncol
             for rr in range(r, min(n, r + m["span"])):
-                rows[rr][c] = m["value"]
+                if c < len(rows[rr]):                 # a ragged row may be short
+                    rows[rr][c] = m["value"]
             notes.append(f"rows {r + 1}..{min(n, r + m['span'])}, column {header[c]} := {m['value']!r}")
         elif op == "huge" and n:
             c = m["col"] % ncol
             for rr in range(r, min(n, r + m["span"])):
-                rows[rr][c] = m["value"]
+                if c < len(rows[rr]):                 # a ragged row may be short
+                    rows[rr][c] = m["value"]
             notes.append(f"rows {r + 1}..{min(n, r + m['span'])}, column {header[c]} := {m['value']}")
         elif op == "dup_row" and n:
             rows.insert(r, list(rows[r]))
@@ -763,10 +765,11 @@ def apply_table_mutations(header: list, units: list, cols: list, sep: str, muts:
             notes.append(f"ragged: {how} at row {r + 1}")
         elif op == "long_field" and n:
             how, ln = m["how"], m["len"]
-            if how == "zeros":
-                rows[r][m["col"] % ncol] = "0." + "0" * ln + "1"
-            elif how == "digits":
-                rows[r][m["col"] % ncol] = "1" + "0" * ln
+            c = m["col"] % max(1, len(rows[r]))   # a ragged row may be short
+            if how == "zeros" and rows[r]:
+                rows[r][c] = "0." + "0" * ln + "1"
+            elif how == "digits" and rows[r]:
+                rows[r][c] = "1" + "0" * ln
             elif how == "garbage_line":
                 lines_extra.append((r, "x" * ln))
             elif how == "long_header":
