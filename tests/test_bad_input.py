@@ -342,3 +342,19 @@ def test_synth_does_not_write_through_a_symlink(tmp_path, capsys):
     code, _, err = run(["synth", "--force", "-o", tmp_path / "link"], capsys)
     one_line_error(code, err, "symbolic link")
     assert target.read_text() == "mine\n" and (tmp_path / "link").is_symlink()
+
+
+def test_trc_reads_y_as_the_normal_channel_and_refuses_both(tmp_path, capsys):
+    t = np.arange(300) * 1e-3
+    x = np.sin(2 * np.pi * t * 7) + 0.3 * np.sin(2 * np.pi * t * 19)
+    y = 1.0 + 0.1 * np.cos(2 * np.pi * t * 11)
+    for head, cols, ok in (("t,x,y", (t, x, y), True), ("t,x,xn,y", (t, x, y, y), False)):
+        p = tmp_path / f"{len(cols)}.csv"
+        p.write_text(head + "\n" + "".join(",".join(f"{c[k]:.17g}" for c in cols) + "\n" for k in range(t.size)))
+        code, _, err = run(["run", "trc", p, "--omnh", "100", "--omnv", "150", "-o", tmp_path / f"o{len(cols)}",
+                            "--no-plots"], capsys)
+        if ok:
+            assert code == 0, err
+            assert (tmp_path / "o3" / "trc.csv").read_text().splitlines()[1].split(",")[4] != ""
+        else:
+            one_line_error(code, err, "xn and y")

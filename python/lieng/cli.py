@@ -127,8 +127,8 @@ def _run_trc(args) -> int:
                                   f"horizontal mode, rad/s)")
         t, x, xn = read_csv(args.deck)
         if xn is not None and args.omnv is None:
-            raise LiengInputError(f"{args.deck}: column xn needs --omnv (natural frequency of the normal "
-                                  f"mode, rad/s)")
+            raise LiengInputError(f"{args.deck}: the normal channel (column xn or y) needs --omnv (natural "
+                                  f"frequency of the normal mode, rad/s)")
         res = trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin, _where=str(args.deck))
     else:
         if args.omnh is not None or args.omnv is not None:

@@ -548,9 +548,13 @@ def lsqfit(x, y, deg: int = 2):
 
 
 def read_csv(path):
-    """Read a ``t,x[,xn]`` CSV (s, mm, mm).  Returns (t, x, xn or None).
+    """Read a ``t,x[,xn]`` CSV (s, mm, mm; the normal channel may be named
+    ``y``, as in diagnose records).  Returns (t, x, xn or None).
 
     Raises LiengInputError naming the row and column of any bad value.
     """
-    arrs = read_columns(path, ("t", "x"), ("xn",), "t,x[,xn]: s, mm, mm")
-    return arrs["t"], arrs["x"], arrs.get("xn")
+    arrs = read_columns(path, ("t", "x"), ("xn", "y"), "t,x[,xn]: s, mm, mm")
+    if "xn" in arrs and "y" in arrs:
+        raise LiengInputError(f"{path}: columns xn and y are both the normal channel: keep one")
+    # y is the normal channel's name in diagnose and synth records: accepted here as xn
+    return arrs["t"], arrs["x"], arrs.get("xn", arrs.get("y"))
