@@ -731,18 +731,13 @@ def apply_table_mutations(header: list, units: list, cols: list, sep: str, muts:
         op = m["op"]
         n = len(rows)
         r = m["row"] % n if n else 0
-        if op == "bad_cell" and n:
+        if op in ("bad_cell", "huge") and n:
             c = m["col"] % ncol
             for rr in range(r, min(n, r + m["span"])):
                 if c < len(rows[rr]):                 # a ragged row may be short
                     rows[rr][c] = m["value"]
-            notes.append(f"rows {r + 1}..{min(n, r + m['span'])}, column {header[c]} := {m['value']!r}")
-        elif op == "huge" and n:
-            c = m["col"] % ncol
-            for rr in range(r, min(n, r + m["span"])):
-                if c < len(rows[rr]):                 # a ragged row may be short
-                    rows[rr][c] = m["value"]
-            notes.append(f"rows {r + 1}..{min(n, r + m['span'])}, column {header[c]} := {m['value']}")
+            shown = repr(m["value"]) if op == "bad_cell" else m["value"]
+            notes.append(f"rows {r + 1}..{min(n, r + m['span'])}, column {header[c]} := {shown}")
         elif op == "dup_row" and n:
             rows.insert(r, list(rows[r]))
             notes.append(f"row {r + 1} duplicated")
