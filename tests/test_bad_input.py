@@ -358,3 +358,20 @@ def test_trc_reads_y_as_the_normal_channel_and_refuses_both(tmp_path, capsys):
             assert (tmp_path / "o3" / "trc.csv").read_text().splitlines()[1].split(",")[4] != ""
         else:
             one_line_error(code, err, "xn and y")
+
+
+def test_a_field_whose_exponent_is_beyond_range_names_its_columns(tmp_path, capsys):
+    # found by the fuzz campaign: a TRC deck read as an MLIEN deck puts '1E300' where F10.2 reads '1E3000000'
+    p = deck(tmp_path, MLIEN, 2, 16, 25, "1E99999999")
+    code, _, err = run(["run", "mlien", p, "-o", tmp_path / "o"], capsys)
+    one_line_error(code, err, "card 2, columns 16-25", "out of the range")
+
+
+def test_a_time_column_in_the_wrong_unit_is_named(tmp_path, capsys):
+    # found by the fuzz campaign: times scaled by 1e-300 divided by zero in the smoothing
+    t = np.arange(2000) * 1e-303
+    x = np.mod(np.arange(2000), 100) * 0.01
+    p = tmp_path / "r.csv"
+    p.write_text("t,x\n" + "".join(f"{a:.17g},{b:.17g}\n" for a, b in zip(t, x)))
+    code, _, err = run(["diagnose", p, "--v0", "1", "-o", tmp_path / "o"], capsys)
+    one_line_error(code, err, "column t", "unit")

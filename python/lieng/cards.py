@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from decimal import ROUND_HALF_EVEN, Context, Decimal
+from decimal import ROUND_HALF_EVEN, Context, Decimal, DecimalException
 from pathlib import Path
 from typing import Iterable, Sequence
 
@@ -207,11 +207,14 @@ def read_field(text: str, ed: Edit) -> int | float:
         raise ValueError("is not a number")
     sign, ipart, has_point, fpart, e1, e2 = m.groups()
     exp = int(e1 or e2 or 0)
-    if has_point is not None:
-        value = Decimal(f"{ipart or '0'}.{fpart or '0'}")
-    else:
-        value = Decimal(ipart).scaleb(-ed.d)
-    value = value.scaleb(exp)
+    try:
+        if has_point is not None:
+            value = Decimal(f"{ipart or '0'}.{fpart or '0'}")
+        else:
+            value = Decimal(ipart).scaleb(-ed.d, context=_WIDE)
+        value = value.scaleb(exp, context=_WIDE)
+    except DecimalException:                # an exponent beyond any context (1E99999999)
+        raise ValueError("is out of the range of a real number") from None
     f = float(value)
     if not math.isfinite(f):
         raise ValueError("is out of the range of a real number")

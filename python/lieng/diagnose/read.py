@@ -269,6 +269,10 @@ def record_from_arrays(t, x, v0, y=None, *, y_is_force=False, source="arrays") -
     return out
 
 
+#: the sampling intervals a friction record may have (s): 1 GHz to one sample an hour
+DT_RANGE = (1e-9, 3600.0)
+
+
 def _regularise(path, t, chans, notes) -> dict:
     """The channels on an even grid at the median interval (linear
     interpolation), with a note when the record was uneven or had gaps."""
@@ -276,6 +280,9 @@ def _regularise(path, t, chans, notes) -> dict:
     dt = float(np.median(d))
     if not dt > 0 or not math.isfinite(dt):
         _fail(f"{path}: column t: no usable sampling interval")
+    if not DT_RANGE[0] <= dt <= DT_RANGE[1]:
+        _fail(f"{path}: column t: a sampling interval of {dt:g} s is outside {DT_RANGE[0]:g} to {DT_RANGE[1]:g} s: "
+              f"check the time column's unit (seconds)")
     span = float(t[-1] - t[0])
     if span / dt > MAX_SAMPLES:
         _fail(f"{path}: column t: {span:g} s at {dt:g} s would be {span / dt:.3g} samples, more than "
