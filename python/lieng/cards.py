@@ -36,7 +36,7 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from .errors import LiengInputError
-from .inputs import read_text
+from .inputs import read_text, split_lines
 
 #: a deck is at most a few hundred cards of 80 columns
 MAX_DECK_BYTES = 1024**2
@@ -560,12 +560,8 @@ def read_deck(path, program: str = "lieng1"):
     """
     deck_class = _deck_class(program)
     text = read_text(path, encoding="ascii", what="deck", max_bytes=MAX_DECK_BYTES)
-    # cards end at LF, CRLF or CR: a form feed or a TAB inside a card is a
-    # character of that card, reported with its columns
-    lines = re.split(r"\r\n|\r|\n", text)
-    if lines[-1] == "":
-        lines.pop()
-    return deck_class.from_lines(lines, source=str(path))
+    # a form feed or a TAB inside a card is a character of that card, reported with its columns
+    return deck_class.from_lines(split_lines(text) if text else [], source=str(path))
 
 
 def write_deck(deck, path) -> None:

@@ -22,6 +22,9 @@ __all__ = ["main"]
 PROGRAMS = ("lieng1", "mlien", "trc")
 #: the words of the message for a failure no check foresaw (the fuzz suite looks for them)
 UNEXPECTED = "unexpected failure on this input"
+#: --force of the commands that write an output directory
+FORCE_HELP = ("write into an existing directory that holds other files (they are left as they are; lieng replaces "
+              "only its own outputs)")
 #: the programs whose decks hold a characteristic (cycles, sweep)
 CHAR_PROGRAMS = ("lieng1", "mlien")
 
@@ -101,12 +104,10 @@ def _is_table(path) -> bool:
     """A delimited table with a header naming a time column (comma, TAB,
     semicolon or whitespace), rather than a card deck.  A path that is not a
     readable regular file is an error here (a FIFO is never opened)."""
-    import re
-
-    from .inputs import head
+    from .inputs import head, split_lines
 
     p = Path(path)
-    first = re.split(r"\r\n|\r|\n", head(p))[0]
+    first = split_lines(head(p))[0]
     if p.suffix.lower() in (".csv", ".tsv"):
         return True
     cells = [c.strip().lower() for c in re.split(r"[,;\t]|\s+", first) if c.strip()]
@@ -210,13 +211,9 @@ def _sweep(args) -> int:
 
 
 def _diagnose(args) -> int:
-    import sys
-
     from .diagnose import diagnose, read_record, record_from_trc_deck
     from .diagnose.report import summary_lines, write_outputs
-    from .outputs import staged_outdir
-
-    from .outputs import check_outdir, dumps_json
+    from .outputs import check_outdir, dumps_json, staged_outdir
 
     check_outdir(args.outdir, args.force)
     fn = args.fn
@@ -279,19 +276,8 @@ def _figures(args) -> int:
 PRELOAD_MAX = 10_000.0
 
 
-def _all_finite(obj) -> bool:
-    """No NaN or infinity anywhere in a nested result (dicts, lists, numbers)."""
-    if isinstance(obj, dict):
-        return all(_all_finite(v) for v in obj.values())
-    if isinstance(obj, (list, tuple)):
-        return all(_all_finite(v) for v in obj)
-    if isinstance(obj, float):
-        return math.isfinite(obj)
-    return True
-
-
 def _twodof(args) -> int:
-    from .outputs import check_outdir, dumps_json
+    from .outputs import all_finite, check_outdir, dumps_json
     from .twodof import T_END_MAX, T_END_MIN, compare, write_outputs
 
     if args.outdir is not None:
@@ -317,7 +303,7 @@ def _twodof(args) -> int:
         raise LiengInputError(f"--rpm {args.rpm:g}: the belt at r2 = 0.08 m must be slower than 1 m/s "
                               f"(rpm < {60 / (2 * math.pi * 0.08):.4g})")
     res = compare(preload=args.preload, rpm=args.rpm, t_end=args.t_end, keep=keep, belt=args.belt)
-    if not _all_finite(res):
+    if not all_finite(res):
         raise LiengInputError(f"--preload {args.preload:g}, --rpm {args.rpm:g}: the simulation leaves the range of "
                               f"the model (a non-finite result); use values nearer the paper's (80 N, 0.1 rpm)")
     if args.outdir is not None:
@@ -406,7 +392,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--omnv", type=float, help="trc, CSV input with xn: natural frequency of the normal mode (rad/s)")
     r.add_argument("--origin", choices=("listing", "fit"), default="listing",
                    help="trc: EL/ELN as the listing finds them (default) or by a better-conditioned line fit")
-    r.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
+    r.add_argument("--force", action="store_true", help=FORCE_HELP)
     r.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
     def deck_args(q):
         q.add_argument("deck", help="a LIENG-1 (or, with --program mlien, MLIEN) card deck")
@@ -446,7 +432,7 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record; estimated from the sticks when not given")
     dg.add_argument("-o", "--outdir", required=True, help="output directory")
-    dg.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
+    dg.add_argument("--force", action="store_true", help=FORCE_HELP)
     dg.add_argument("--json", action="store_true", help="print diagnosis.json")
     dg.add_argument("--no-plots", action="store_true", help="write diagnosis.json and report.md only")
     dg.add_argument("-q", "--quiet", action="store_true", help="print nothing (errors still go to stderr)")
@@ -472,14 +458,14 @@ def build_parser() -> argparse.ArgumentParser:
     td.add_argument("--belt", type=float, help="belt velocity (m/s) instead of the disc at --rpm and r2 = 0.08 m "
                     "(e.g. 0.00838, sec. 5's value)")
     td.add_argument("-o", "--outdir", help="write twodof.json and plots here")
-    td.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
+    td.add_argument("--force", action="store_true", help=FORCE_HELP)
     td.add_argument("--json", action="store_true", help="print JSON")
     fg = sub.add_parser("figures", help="regenerate the thesis's theoretical figures (2.22-2.29, A9-1..A9-7)",
                         description="Regenerate the theoretical figures the thesis describes, each from a deck "
                                     "in cards/ (cards/figures/, cards/mlien_a9_7.dat), each PNG captioned with "
                                     "the section it reproduces.")
     fg.add_argument("-o", "--outdir", required=True, help="output directory")
-    fg.add_argument("--force", action="store_true", help="write into an existing directory that holds other files (they are left as they are; lieng replaces only its own outputs)")
+    fg.add_argument("--force", action="store_true", help=FORCE_HELP)
     fg.add_argument("--cards", default=None, help="a directory laid out as the project's cards/ (default: the "
                     "decks installed with lieng)")
     fg.add_argument("--only", nargs="+", metavar="FIG", help="only these figures (e.g. 2.27 A9-7)")

@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import errno
 import os
+import re
 import stat
 from pathlib import Path
 
 from .errors import LiengInputError
 
-__all__ = ["read_text", "head", "MAX_BYTES"]
+__all__ = ["read_text", "head", "split_lines", "MAX_BYTES"]
 
 #: the largest input read (bytes): 2 GiB (a 20-million-row table)
 MAX_BYTES = 2 * 1024**3
@@ -58,6 +59,20 @@ def read_text(path, *, encoding: str = "utf-8", what: str = "file", max_bytes: i
         line = raw[: exc.start].count(b"\n") + 1
         kind = "ASCII (a card deck is plain text)" if encoding == "ascii" else f"valid {encoding.upper()} text"
         raise LiengInputError(f"{path}: line {line}, byte {exc.start + 1}: not {kind}") from None
+
+
+#: a line ends at LF, CRLF or CR only: a form feed, a vertical tab or a TAB is a character of its line
+#: (str.splitlines would split a card at a form feed)
+_EOL = re.compile(r"\r\n|\r|\n")
+
+
+def split_lines(text: str) -> list[str]:
+    """The lines of ``text``, ending at LF, CRLF or CR only (a final line
+    end does not make an empty last line)."""
+    lines = _EOL.split(text)
+    if len(lines) > 1 and lines[-1] == "":
+        lines.pop()
+    return lines
 
 
 def head(path, nbytes: int = 4096, *, what: str = "file") -> str:

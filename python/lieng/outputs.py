@@ -40,7 +40,7 @@ from typing import Iterable, Sequence
 from .errors import LiengInputError
 
 __all__ = ["MANIFEST", "check_outdir", "check_outfile", "staged_outdir", "write_csv", "write_lines",
-           "dumps_json", "finite_json", "replace_file"]
+           "dumps_json", "finite_json", "all_finite", "replace_file"]
 
 #: the list of files a command wrote into its output directory
 MANIFEST = ".lieng-outputs"
@@ -279,6 +279,17 @@ def finite_json(obj):
     if isinstance(obj, np.bool_):
         return bool(obj)
     return obj
+
+
+def all_finite(obj) -> bool:
+    """No NaN or infinity anywhere in a nested result (dicts, lists, numbers)."""
+    if isinstance(obj, dict):
+        return all(all_finite(v) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return all(all_finite(v) for v in obj)
+    if isinstance(obj, float):
+        return math.isfinite(obj)
+    return True
 
 
 def dumps_json(obj, **kw) -> str:

@@ -15,7 +15,7 @@ from typing import Sequence
 import numpy as np
 
 from .errors import LiengInputError
-from .inputs import read_text
+from .inputs import read_text, split_lines
 
 __all__ = ["read_columns", "read_table", "Table"]
 
@@ -43,9 +43,6 @@ class Table:
     def __len__(self):
         return len(self.lines)
 
-
-#: lines end at LF, CRLF or CR only (a form feed or a vertical tab is a character of the line)
-_LINES = re.compile(r"\r\n|\r|\n")
 
 _UNIT = re.compile(r"^\s*(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$")
 
@@ -107,7 +104,7 @@ def read_table(path, expect: str) -> Table:
         non-finite cell (naming its line and column).
     """
     text = read_text(path, what="table")
-    rows = _LINES.split(text)
+    rows = split_lines(text)
     if len(rows) > MAX_ROWS + 1 and sum(1 for r in rows if r.strip()) > MAX_ROWS + 1:
         raise LiengInputError(f"{path}: more than {MAX_ROWS} rows: split the record (lieng reads at most "
                               f"{MAX_ROWS} rows)")

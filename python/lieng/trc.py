@@ -39,6 +39,7 @@ as calibrated and corrected.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -428,9 +429,8 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
          status, where, xx0, xxn0) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
     if status != 0:
         raise _err_status(int(status), int(where), _where)
-    import warnings
-
     el_listing, eln_listing = float(el), float(eln) if has_eln else math.nan
+    eln_undefined = False
     if origin == "listing" and not math.isfinite(el_listing):
         raise LiengInputError(f"{_where}: EL is undefined: the reverse construction at points {int(iel)}-"
                               f"{int(iel) + 1}, where the velocity changes sign, divides by zero (neighbouring "
@@ -445,21 +445,21 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
             el = el_new
             xx = xx0 - el
             xlnr = xs - el
-            amt = xx * (float(omnh) ** 2 / G_MM) if abs(omnh) < 1e150 else np.full_like(xx, np.inf)
+            amt = _as_mu(xx, omnh)
             if has_normal and has_eln:
                 eln_new = origin_fit(xxn0, yyn, vnln, int(ieln) - 1)
                 if math.isfinite(eln_new):
                     eln = eln_new
                     xxn = xxn0 - eln
                     xnlnr = xn_arr - eln
-                    amtn = xxn * (float(omnv) ** 2 / G_MM) if abs(omnv) < 1e150 else np.full_like(xxn, np.inf)
+                    amtn = _as_mu(xxn, omnv)
         if has_normal and has_eln and not math.isfinite(float(eln)):
             warnings.warn(f"{_where}: ELN is undefined: the reverse construction at points {int(ieln)}-"
                           f"{int(ieln) + 1}, where the normal velocity changes sign, divides by zero; the "
                           f"normal-mode characteristic is not shifted", stacklevel=2)
-            has_eln, eln = 0, math.nan
+            has_eln, eln, eln_undefined = 0, math.nan, True
             xxn, xnlnr = xxn0.copy(), xn_arr.copy()
-            amtn = xxn * (float(omnv) ** 2 / G_MM) if abs(omnv) < 1e150 else np.full_like(xxn, np.inf)
+            amtn = _as_mu(xxn, omnv)
     if not has_normal:
         nan = np.full_like(x, np.nan)
         xn_out, vn, vnln, am, xxn, yyn, amtn, xnlnr = (nan.copy() for _ in range(8))
@@ -467,7 +467,7 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
     else:
         xn_out = xn_arr
         if not has_eln:
-            if math.isfinite(float(eln)):
+            if not eln_undefined:           # (an undefined ELN was said above)
                 warnings.warn(f"{_where}: the normal velocity has no - to + sign change: ELN is undefined, the "
                               f"normal-mode characteristic is not shifted", stacklevel=2)
             eln = math.nan
@@ -479,6 +479,12 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
                      xxn=xxn, yyn=yyn, amtn=amtn, xlnr=xlnr, xnlnr=xnlnr, el=float(el), eln=float(eln),
                      omnh=float(omnh), omnv=float(omnv) if has_normal else math.nan, has_normal=has_normal,
                      origin=origin, el_listing=el_listing, eln_listing=eln_listing if has_normal else math.nan)
+
+
+def _as_mu(xx, om):
+    """XX*OM**2/9810 (loop 540's AMT), in float64: an overflow is inf, flagged later, never an exception."""
+    with np.errstate(all="ignore"):
+        return xx * (np.float64(om) ** 2 / G_MM)
 
 
 #: why a point's value can be undefined, per column (the messages of :func:`_flag_missing`)
@@ -493,8 +499,6 @@ def _flag_missing(cols: dict, where: str) -> None:
     """Set every non-finite value of the per-point columns to NaN (written as
     an empty cell in trc.csv, ``UNDEF`` in the listing) and say so, once per
     column, with the first points and the cause."""
-    import warnings
-
     for name, a in cols.items():
         bad = ~np.isfinite(a)
         if not bad.any():

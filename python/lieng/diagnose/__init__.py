@@ -18,12 +18,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import LiengInputError
-from .baseline import Params, calibrate_fn, fit_baseline, simulate
+from ..outputs import finite_json as _finite
+from .baseline import Params, calibrate_fn, fit_baseline
 from .decide import ALPHA, decide, misfit, null_replicates
 from .evidence import CANDIDATES, MARGIN, SLIDING, sliding_statistics, statistics, y_on_motion
 from .extend import METRIC, Judge, candidates, gain, refine, split, subset
 from .read import Record, read_record, record_from_arrays, record_from_trc_deck
-from .segment import Cycles, estimate_fn, find_cycles, prepare, slip_seconds
+from .segment import estimate_fn, find_cycles, prepare, slip_seconds
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -39,21 +40,6 @@ FN_CHECK = 0.20
 #: the twin-branch evidence is read only when the baseline's replicates
 #: last as long in slip as the record, within this fraction
 SLIP_MATCH = 0.10
-
-
-def _finite(v):
-    """JSON-safe: non-finite floats become None, numpy scalars Python ones."""
-    if isinstance(v, dict):
-        return {k: _finite(a) for k, a in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_finite(a) for a in v]
-    if isinstance(v, (np.floating, float)):
-        return float(v) if math.isfinite(v) else None
-    if isinstance(v, (np.integer,)):
-        return int(v)
-    if isinstance(v, np.bool_):
-        return bool(v)
-    return v
 
 
 @dataclass
@@ -327,16 +313,16 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
         # the extension starts from the effect's size over the baseline's replicates (the statistic less
         # what the baseline itself gives), not from the raw statistic
         cands = candidates(k, base, pr, c, fn_used, {**st, k: rows[k]["effect_size"]}, aux, tsplit)
-        e_train0 = train.error(base)[0]
+        e_train0 = train.error(base)
         ext, e_tr = base, e_train0
         if cands:
-            errs = [train.error(p, bool(p.trig_ay))[0] for p in cands]
+            errs = [train.error(p, bool(p.trig_ay)) for p in cands]
             if np.isfinite(min(errs)):
                 ext = cands[int(np.argmin(errs))]
                 ext, e_tr = refine(k, ext, base, train, pr, fn_used, pr.t < tsplit, _train_trough(pr, c, tsplit),
                                    ylow=aux.get("ylow"))
                 if ext.trig_ay:           # the same metric for both: with the normal channel's unlocked part
-                    e_train0 = train.error(base, True)[0]
+                    e_train0 = train.error(base, True)
         g = gain(pr, c, fn_used, base, ext, tsplit, aux.get("ylow"))
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0

@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from ..errors import LiengInputError
-from .baseline import Params, fit_baseline, model_y, pr_like, run_slice, simulate, slip_friction
+from .baseline import Params, model_y, pr_like, run_slice, simulate, slip_friction
 from .evidence import _stick_series, drive_scan, level_fit, lowpass
 from .segment import Cycles, Prepared, find_cycles
 
@@ -121,8 +121,8 @@ class Judge:
             self.ysd = float(np.std(ys)) if ys.size > 2 and np.std(ys) > 0 else 1.0
 
     def vector(self, p: Params, with_y: bool = False):
-        """(per-cycle differences (n, 3), waveform differences, [normal
-        channel term]) or None; the normal channel's unlocked part is
+        """(per-cycle differences (n, 3), waveform differences, normal
+        channel term or None) or None; the normal channel's unlocked part is
         compared only ``with_y`` (when the model predicts one: otherwise it
         is the same for every model and would only dilute the comparison)."""
         pr = self.pr
@@ -154,7 +154,7 @@ class Judge:
             r_rec = pr.y - (c0 + c1 * pr.x + c2 * self.c.v)
             r_sim = model_y(pr, p, np.zeros(t.size), np.zeros(t.size)) - c0
             ey = float(np.sqrt(np.mean((r_rec[self.mask] - r_sim[self.mask]) ** 2))) / self.ysd
-        return dc, dw, ey, None
+        return dc, dw, ey
 
     @staticmethod
     def combine(dc, dw, ey, rows=None) -> float:
@@ -163,13 +163,13 @@ class Judge:
         e2 = _msq(d) + _msq(dw) + (ey * ey if ey is not None else 0.0)
         return float(math.sqrt(e2))
 
-    def error(self, p: Params, with_y: bool = False):
+    def error(self, p: Params, with_y: bool = False) -> float:
+        """The error of ``p`` (inf when it cannot be judged)."""
         v = self.vector(p, with_y)
         if v is None:
-            return math.inf, None
-        dc, dw, ey, xs = v
-        e = self.combine(dc, dw, ey)
-        return (e if math.isfinite(e) else math.inf), xs
+            return math.inf
+        e = self.combine(*v)
+        return e if math.isfinite(e) else math.inf
 
 
 def _fit_level(pr, p: Params, fn, target, tr_mask, ylow=None, it=5):
@@ -330,21 +330,21 @@ def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: 
     ve = J.vector(ext, with_y) if ext is not base else vb
     if vb is None or ve is None:
         return dict(e0=0.0, e1=0.0, gain=0.0, interval=[0.0, 0.0], x_base=None, x_ext=None)
-    e0, e1 = J.combine(*vb[:3]), J.combine(*ve[:3])
+    e0, e1 = J.combine(*vb), J.combine(*ve)
     try:
         x_base = simulate(pr, base, fn, ylow)[0]
         x_ext = simulate(pr, ext, fn, ylow)[0] if ext is not base else x_base
     except LiengInputError:
         x_base = x_ext = None
     g = 1.0 - e1 / e0 if e0 > 0 else 0.0
-    # interval: resample the held-out cycles (each with its matched simulated cycles)
+    # interval: resample the held-out cycles (each with its one-cycle-ahead prediction)
     rng = np.random.default_rng(seed)
     n = vb[0].shape[0]
     gs = []
     if n >= 3 and ext is not base:
         for _ in range(nboot):
             pick = rng.integers(0, n, n)
-            a, b = J.combine(*vb[:3], rows=pick), J.combine(*ve[:3], rows=pick)
+            a, b = J.combine(*vb, rows=pick), J.combine(*ve, rows=pick)
             if a > 0:
                 gs.append(1.0 - b / a)
     iv = [float(np.percentile(gs, 5)), float(np.percentile(gs, 95))] if len(gs) >= 20 else [g, g]
@@ -366,7 +366,7 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
     refitted each time).  Returns (params, training error)."""
     names = [n for n in SCALED.get(effect, ()) if getattr(best, n)]
     if not names:
-        return best, judge.error(best, bool(best.trig_ay))[0]
+        return best, judge.error(best, bool(best.trig_ay))
     with_y = bool(best.trig_ay)
 
     def make(f):
@@ -374,7 +374,7 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
         return _fit_level(pr, q, fn, target, target_mask, ylow=ylow if q.load_k else None)
 
     def cost(f):
-        e = judge.error(make(f), with_y)[0]
+        e = judge.error(make(f), with_y)
         return e if math.isfinite(e) else 1e300
 
     g = (math.sqrt(5.0) - 1.0) / 2.0
