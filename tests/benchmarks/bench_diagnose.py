@@ -11,7 +11,8 @@ reader as ``lieng diagnose``).  Printed per generator: the confusion matrix
 effect, the false-alarm rate on effect-free records, and the time per
 record.
 
-    python tests/benchmarks/bench_diagnose.py [--seeds 8] [--only lugre,synth] [--json out.json]
+    python tests/benchmarks/bench_diagnose.py [--seeds 8] [--only lugre,synth] [--cases none,twin_branch]
+                                              [--json out.json]
 """
 
 from __future__ import annotations
@@ -171,13 +172,15 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--seeds", type=int, default=8)
     ap.add_argument("--only", default="")
+    ap.add_argument("--cases", default="", help="comma-separated subset of the cases (default: all six)")
     ap.add_argument("--json")
     a = ap.parse_args(argv)
+    cases = [c for c in CASES if not a.cases or c in a.cases.split(",")]
     gens = generators(set(a.only.split(",")) if a.only else None)
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         for gname, g in gens.items():
-            for case in CASES:
+            for case in cases:
                 for seed in range(a.seeds):
                     nu = NUISANCES[seed % len(NUISANCES)]
                     d = Path(tmp) / f"{gname}_{case}_{seed}"

@@ -37,8 +37,10 @@ FN_UNCERTAINTY = 0.05
 FN_UNCERTAINTY_DURATION = 0.15
 #: a --fn further than this from the slips' estimate is questioned
 FN_CHECK = 0.20
-#: the twin-branch evidence is read only when the baseline's replicates
-#: last as long in slip as the record, within this fraction
+#: the twin-branch evidence is read only when the record's slips last no
+#: longer than the baseline's replicates', beyond this fraction (shorter slips
+#: are what a decelerating branch above the accelerating one makes: the
+#: effect itself)
 SLIP_MATCH = 0.10
 
 
@@ -285,12 +287,12 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     null, nrep = null_replicates(pr, base_all, fn_used, u_fn, B=replicates, budget=budget, progress=progress,
                                  y_is_force=rec.y_is_force, arcs=arcs)
     # the twin-branch evidence is calibrated by replicates whose slips are like the record's: where the
-    # baseline misses the slips' duration (by over SLIP_MATCH of it and 3.5 of its spread) it is withheld
+    # record's slips outlast the baseline's (by over SLIP_MATCH of it and 3.5 of its spread) it is withheld
     dur, dn = aux["gof"]["slip_duration"], null.get("slip_duration", np.array([]))
     dn = dn[np.isfinite(dn)]
     if dn.size >= 5 and not withheld:
         m0, s0 = float(np.mean(dn)), float(np.std(dn, ddof=1))
-        if abs(dur - m0) > max(SLIP_MATCH * m0, 3.5 * s0):
+        if dur - m0 > max(SLIP_MATCH * m0, 3.5 * s0):
             why = (f"the baseline does not reproduce the slips (they last {dur:.3g} half natural periods, its "
                    f"replicates' {m0:.3g} +- {s0:.2g}): their shape cannot be calibrated")
             withheld = {"twin_branch": why}

@@ -74,7 +74,7 @@ import math
 import numpy as np
 
 from .baseline import slip_friction
-from .segment import Cycles, Prepared, slip_arcs, stick_ratios
+from .segment import Cycles, Prepared, slip_arcs, slip_seconds, stick_ratios
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "statistics", "lowpass"]
 
@@ -473,9 +473,9 @@ GOF_MARGIN = {"slip_duration": 0.25, "peak_spread": 0.10, "period_spread": 0.10}
 
 def goodness(pr: Prepared, c: Cycles, fn: float, D: float) -> dict:
     """The goodness-of-fit features (see :data:`GOF`)."""
-    dur = pr.t[c.trough_i] - pr.t[c.peak_i]
+    dur = slip_seconds(pr, c)
     per = c.periods(pr.t)
-    return {"slip_duration": float(np.median(dur) * 2.0 * fn) if dur.size else 0.0,
+    return {"slip_duration": float(dur * 2.0 * fn) if dur else 0.0,
             "peak_spread": float(np.std(pr.x[c.peak_i]) / D) if c.n > 1 else 0.0,
             "period_spread": float(np.std(per) / np.mean(per)) if per.size > 1 else 0.0}
 

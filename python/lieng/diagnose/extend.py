@@ -16,8 +16,10 @@ the model of
 * each cycle's stick time (over the mean period), peak and trough (over D):
   what the model predicts *when* and *how high* (a modulated drive, ageing
   under holds or a stepped drive, a load or a drift show here);
-* the mean slip waveform: x from each predicted peak at 9 instants over 0.6
-  natural periods, less the peak, over D, against the record's;
+* the mean slip waveform: x at 9 instants over 0.6 natural periods centred
+  on the moment each slip's x crosses halfway from its peak to its trough,
+  less that halfway level, over D, against the record's (aligned on the
+  fall, so that a flat or creeping top does not decide where it starts);
 * when the extension predicts a part of the normal channel that is not
   locked to the motion (triggering): the RMS difference, in time, between
   that part of the record's y and of the model's (each less the baseline's
@@ -43,9 +45,8 @@ __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles, one cycle ahead from the record's own state (from "
           "each trough): stick time (/ mean period), peak and trough (/ drop D); mean slip waveform at 9 instants over "
-          "0.6 natural periods (/ D); when the extension predicts the normal channel's part not locked to the motion, "
+          "0.6 natural periods centred on each slip's halfway crossing (/ D); when the extension predicts the normal channel's part not locked to the motion, "
           "its RMS difference in time (/ spread of y)")
-NWAVE = 9
 
 
 def subset(c: Cycles, sel) -> Cycles:
@@ -71,6 +72,32 @@ def split(pr: Prepared, c: Cycles) -> float:
     return tsplit
 
 
+#: instants of the mean slip waveform the Judge compares
+NWAVE = 9
+
+
+def _mid_wave(t, x, i0: int, i1: int, tau):
+    """The slip from ``i0`` (its peak) to ``i1`` (past its trough) seen from
+    the moment x crosses halfway between the two: x(t_half + tau) - x_half,
+    or None when that window leaves the samples.  (Aligned on the fall, not
+    on the peak: a flat or creeping top would place the peak anywhere on
+    it.)"""
+    if i1 - i0 < 2 or i1 > x.size:
+        return None
+    seg = x[i0:i1]
+    half = 0.5 * (float(seg[0]) + float(np.min(seg)))
+    below = np.flatnonzero(seg < half)
+    if below.size == 0 or below[0] == 0:
+        return None
+    j = i0 + int(below[0])
+    a, b = float(x[j - 1]) - half, float(x[j]) - half
+    th = float(t[j - 1] + (t[j] - t[j - 1]) * a / (a - b)) if a != b else float(t[j])
+    tt = th + tau
+    if tt[0] < t[0] or tt[-1] > t[-1]:
+        return None
+    return np.interp(tt, t, x) - half
+
+
 def _msq(a) -> float:
     a = np.asarray(a, float)
     a = a[np.isfinite(a)]
@@ -85,8 +112,8 @@ class Judge:
     record trough (the slider just stuck, at the record's displacement) the
     model runs on the record's drive and clock to its next slip, and its
     predicted stick time (over the mean period), peak and trough (over D)
-    are compared with the record's, plus the mean slip waveform after the
-    predicted peaks (over D) against the record's; e = sqrt(mean of the
+    are compared with the record's, plus the mean slip waveform around the
+    halfway crossing of each predicted slip (over D) against the record's; e = sqrt(mean of the
     per-cycle squares + mean of the waveform's squares [+ the normal channel's
     unlocked part]).  A trajectory that parts from the record's (rounding,
     chaos, a noisy rig) costs one cycle, not the rest of the record."""
@@ -111,9 +138,10 @@ class Judge:
         t, x = pr.t, pr.x
         self.rec = np.column_stack([(t[c.peak_i[k + 1]] - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,
                                     x[c.trough_i[k + 1]] / self.D])
-        self.tau = np.linspace(0.0, 0.6 / fn, NWAVE)
-        waves = [np.interp(t[c.peak_i[j + 1]] + self.tau, t, x) - x[c.peak_i[j + 1]] for j in k
-                 if t[c.peak_i[j + 1]] + self.tau[-1] <= t[-1]]
+        self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
+        waves = [_mid_wave(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k
+                 if j + 1 < c.n]
+        waves = [w for w in waves if w is not None]
         self.wave = np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan)
         self.mask = (pr.t >= lo) & (pr.t < hi)
         if pr.y is not None:
@@ -142,9 +170,9 @@ class Judge:
             ip = int(np.argmax(xs[:end + 1]))
             it = ip + int(np.argmin(xs[ip:end + 1]))
             pred[row] = ((t[sl.start + ip] - t[sl.start]) / self.P, xs[ip] / self.D, xs[it] / self.D)
-            tt = t[sl.start + ip] + self.tau
-            if tt[-1] <= t[sl.stop - 1]:
-                waves.append(np.interp(tt, t[sl], xs) - xs[ip])
+            w = _mid_wave(t[sl], xs, ip, it + 1, self.tau)
+            if w is not None:
+                waves.append(w)
         dc = self.rec - pred
         dw = self.wave - (np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan))
         ey = None
@@ -286,10 +314,15 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
     elif effect == "drive_modulation":
         ts, r = _stick_series(pr, _subset(c, ctr_sel))
         per = c.periods(pr.t)
-        if r.size >= 8 and per.size >= 2:
+        if r.size >= 5 and per.size >= 2:
             f_ss = 1.0 / float(np.median(per))
             span = float(ts[-1] - ts[0])
-            _, f, _, _ = drive_scan(ts, r, max(2.0 / span, 0.02 * f_ss), 0.5 * f_ss, nperm=0)
+            # the frequency from the training sticks; with fewer than 8 of them, the evidence's (whole record)
+            f = aux.get("f_drive") or 0.0
+            if r.size >= 8:
+                _, f, _, _ = drive_scan(ts, r, max(2.0 / span, 0.02 * f_ss), 0.5 * f_ss, nperm=0)
+            if not f > 0:
+                return out
 
             def fit(fq):
                 B = np.column_stack([np.ones(ts.size), np.sin(2 * math.pi * fq * ts), np.cos(2 * math.pi * fq * ts)])

@@ -317,10 +317,42 @@ def slip_arcs(p: Prepared, c: Cycles, extend: int = 1):
     return out
 
 
+#: a free half-oscillation x = c + A cos(wt) falls from 10 % to 90 % of its
+#: drop in this fraction of its peak-to-trough time (2 acos(0.8) / pi)
+FALL_FRACTION = 2.0 * math.acos(0.8) / math.pi
+
+
+def slip_durations(p: Prepared, c: Cycles) -> np.ndarray:
+    """Each slip's duration (s) read from its fall: the time x takes from
+    10 % to 90 % of the way from its peak to its trough, over
+    :data:`FALL_FRACTION` (so that a free half-oscillation gives its
+    peak-to-trough time).  Read on the fall, not between the extremes: a
+    flat or rounded top (creep before slip, noise) puts the peak anywhere on
+    it."""
+    out = np.empty(c.n)
+    x, t = p.x, p.t
+    for j, (a, b) in enumerate(zip(c.peak_i, c.trough_i)):
+        seg = x[a:b + 1]
+        drop = float(seg[0] - seg[-1]) if seg.size else 0.0
+        if seg.size < 3 or not drop > 0:
+            out[j] = np.nan
+            continue
+        tt = t[a:b + 1]
+        cross = []
+        for lev in (seg[0] - 0.1 * drop, seg[-1] + 0.1 * drop):
+            i = int(np.argmax(seg < lev))
+            if i == 0:
+                break
+            x0, x1 = float(seg[i - 1]) - lev, float(seg[i]) - lev
+            cross.append(float(tt[i - 1] + (tt[i] - tt[i - 1]) * x0 / (x0 - x1)))
+        out[j] = (cross[1] - cross[0]) / FALL_FRACTION if len(cross) == 2 else np.nan
+    return out
+
+
 def slip_seconds(p: Prepared, c: Cycles) -> float | None:
-    """The slips' median duration (s), peak to trough; None below three."""
-    d = p.t[c.trough_i] - p.t[c.peak_i]
-    d = d[d > 0]
+    """The slips' median duration (s, :func:`slip_durations`); None below three."""
+    d = slip_durations(p, c)
+    d = d[np.isfinite(d) & (d > 0)]
     return float(np.median(d)) if d.size >= 3 else None
 
 
