@@ -13,7 +13,8 @@ model started in stick at the record's displacement on the record's drive
 and clock), the RMS of the normalised differences between the record and
 the model of
 
-* each cycle's stick time (over the mean period), peak and trough (over D):
+* each cycle's stick time (from the trough to the next slip's halfway
+  crossing, over the mean period), peak and trough (over D):
   what the model predicts *when* and *how high* (a modulated drive, ageing
   under holds or a stepped drive, a load or a drift show here);
 * the mean slip waveform: x at 9 instants over 0.6 natural periods centred
@@ -44,7 +45,7 @@ __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles, one cycle ahead from the record's own state (from "
-          "each trough): stick time (/ mean period), peak and trough (/ drop D); mean slip waveform at 9 instants over "
+          "each trough): stick time to the next slip's halfway crossing (/ mean period), peak and trough (/ drop D); mean slip waveform at 9 instants over "
           "0.6 natural periods centred on each slip's halfway crossing (/ D); when the extension predicts the normal channel's part not locked to the motion, "
           "its RMS difference in time (/ spread of y)")
 
@@ -76,12 +77,11 @@ def split(pr: Prepared, c: Cycles) -> float:
 NWAVE = 9
 
 
-def _mid_wave(t, x, i0: int, i1: int, tau):
-    """The slip from ``i0`` (its peak) to ``i1`` (past its trough) seen from
-    the moment x crosses halfway between the two: x(t_half + tau) - x_half,
-    or None when that window leaves the samples.  (Aligned on the fall, not
-    on the peak: a flat or creeping top would place the peak anywhere on
-    it.)"""
+def _half_crossing(t, x, i0: int, i1: int):
+    """The moment the slip from ``i0`` (its peak) to ``i1`` (past its trough)
+    crosses halfway between the two, and that level: (t_half, x_half) or
+    None.  (A slip is timed on its fall, not at its peak: a flat or creeping
+    top would place the peak anywhere on it.)"""
     if i1 - i0 < 2 or i1 > x.size:
         return None
     seg = x[i0:i1]
@@ -91,11 +91,26 @@ def _mid_wave(t, x, i0: int, i1: int, tau):
         return None
     j = i0 + int(below[0])
     a, b = float(x[j - 1]) - half, float(x[j]) - half
-    th = float(t[j - 1] + (t[j] - t[j - 1]) * a / (a - b)) if a != b else float(t[j])
-    tt = th + tau
+    return (float(t[j - 1] + (t[j] - t[j - 1]) * a / (a - b)) if a != b else float(t[j])), half
+
+
+def _mid_wave(t, x, i0: int, i1: int, tau):
+    """The slip seen from its halfway crossing (:func:`_half_crossing`):
+    x(t_half + tau) - x_half, or None when that window leaves the samples."""
+    h = _half_crossing(t, x, i0, i1)
+    if h is None:
+        return None
+    tt = h[0] + tau
     if tt[0] < t[0] or tt[-1] > t[-1]:
         return None
-    return np.interp(tt, t, x) - half
+    return np.interp(tt, t, x) - h[1]
+
+
+def _slip_time(t, x, i0: int, i1: int) -> float:
+    """When the slip from ``i0`` to ``i1`` happens: its halfway crossing, or
+    its peak's time when it has none."""
+    h = _half_crossing(t, x, i0, i1)
+    return h[0] if h is not None else float(t[i0])
 
 
 def _msq(a) -> float:
@@ -111,8 +126,8 @@ class Judge:
     (ch. 2.3: the baseline started from the record's state): from each
     record trough (the slider just stuck, at the record's displacement) the
     model runs on the record's drive and clock to its next slip, and its
-    predicted stick time (over the mean period), peak and trough (over D)
-    are compared with the record's, plus the mean slip waveform around the
+    predicted stick time (to the next slip's halfway crossing, over the mean
+    period), peak and trough (over D) are compared with the record's, plus the mean slip waveform around the
     halfway crossing of each predicted slip (over D) against the record's; e = sqrt(mean of the
     per-cycle squares + mean of the waveform's squares [+ the normal channel's
     unlocked part]).  A trajectory that parts from the record's (rounding,
@@ -136,7 +151,8 @@ class Judge:
         span = c.trough_i[k + 1] - i0
         self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, k)]
         t, x = pr.t, pr.x
-        self.rec = np.column_stack([(t[c.peak_i[k + 1]] - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,
+        tslip = np.array([_slip_time(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1) for j in k])
+        self.rec = np.column_stack([(tslip - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,
                                     x[c.trough_i[k + 1]] / self.D])
         self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
         waves = [_mid_wave(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k
@@ -169,7 +185,8 @@ class Judge:
             end = int(back[0]) if back.size else xs.size - 1
             ip = int(np.argmax(xs[:end + 1]))
             it = ip + int(np.argmin(xs[ip:end + 1]))
-            pred[row] = ((t[sl.start + ip] - t[sl.start]) / self.P, xs[ip] / self.D, xs[it] / self.D)
+            pred[row] = ((_slip_time(t[sl], xs, ip, it + 1) - t[sl.start]) / self.P, xs[ip] / self.D,
+                         xs[it] / self.D)
             w = _mid_wave(t[sl], xs, ip, it + 1, self.tau)
             if w is not None:
                 waves.append(w)
