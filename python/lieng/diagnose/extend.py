@@ -274,6 +274,12 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             yl = ylow[idx][m]
             A = np.column_stack([np.ones(ss.size), ss, ss ** 2, ss ** 3, br[m], yl - np.mean(ylow)])
             kf = float(np.linalg.lstsq(A, F[m], rcond=None)[0][5]) / Fbar
+            # the regression carries the baseline's own bias (its replicates' mean): scaled to the effect size
+            raw, size = st.get("load_variation_raw"), st.get("load_variation")
+            if raw and size and raw * size > 0:
+                kf *= float(np.clip(size / raw, 0.2, 5.0))
+            elif raw and size:
+                kf = math.copysign(abs(kf), kf * size / raw)
             if aux.get("y_is_force"):
                 kf = 1.0 / abs(float(np.mean(ylow)))      # Amontons: the load factor is N / mean N
             for sc in (0.7, 1.0, 1.4):
