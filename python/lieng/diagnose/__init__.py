@@ -335,6 +335,8 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                                    ylow=aux.get("ylow"))
                 if ext.trig_ay:           # the same metric for both: with the normal channel's unlocked part
                     e_train0 = train.error(base, True)
+                if not e_tr < e_train0:   # nested: the extension's own term at zero is the baseline itself
+                    ext, e_tr = base, e_train0
         g = gain(pr, c, fn_used, base, ext, tsplit, aux.get("ylow"))
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0
@@ -343,7 +345,9 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
         effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
                                 "p": r["p"], "z": r["z"], "gain": g["gain"], "gain_interval_90": g["interval"],
                                 "training_improvement": imp,
-                                "extension": "none available" if ext is base else "fitted"}))
+                                "extension": "fitted" if ext is not base else
+                                ("none better than the baseline on the training part" if cands else
+                                 "none available")}))
     # the primary effect: the one whose extension explains most of the training part
     named.sort(key=lambda k: -fitted[k][2])
     if "load_variation" in named and "twin_branch" in named and named[0] == "twin_branch":

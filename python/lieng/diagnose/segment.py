@@ -153,6 +153,31 @@ def strokes(vd, min_samples: int = 20) -> list:
     return [s for s in out if s.n >= min_samples]
 
 
+#: the slips' side of the increments' distribution must be this many times
+#: longer than the other for the tails to decide the orientation
+TAIL_RATIO = 2.0
+
+
+def _turned(xs, vd, dt) -> bool:
+    """Whether x is written opposite to the drive (its strokes already
+    turned forward).  Stick-slip: the slips are the fast moves, so the long
+    tail of the increments of x is on the slips' side, opposite to the rise
+    (the tails of the 0.1 % and 99.9 % quantiles, one at least TAIL_RATIO
+    times the other; robust to noise that swamps the slow rise sample to
+    sample).  Otherwise (steady sliding): the median of x' / vd over the
+    moving samples has the sign of the rise."""
+    d = np.concatenate([np.diff(smooth(xx, dt, 1.0, 0, win=9)) for xx in xs if xx.size > 10] or [np.zeros(0)])
+    if d.size >= 100:
+        lo, hi = -float(np.quantile(d, 0.001)), float(np.quantile(d, 0.999))
+        if lo > TAIL_RATIO * hi > 0:
+            return False
+        if hi > TAIL_RATIO * lo > 0:
+            return True
+    v = np.concatenate([np.gradient(smooth(xx, dt, 1.0, 0, win=9), dt) for xx in xs])
+    mv = np.abs(vd) > 0
+    return bool(np.median(v[mv] / vd[mv]) < 0)
+
+
 def prepare(rec: Record) -> Prepared:
     """Strokes turned forward and concatenated; x oriented so that it rises
     with the drive in the sticks."""
@@ -173,11 +198,7 @@ def prepare(rec: Record) -> Prepared:
             ys.append(rec.y[sl])
     x = np.concatenate(xs)
     vd = np.concatenate(vs)
-    # orientation: in the sticks x moves with the drive; the slips are short,
-    # so the median of x' / vd over the moving samples has the sign of the rise
-    v = np.concatenate([np.gradient(smooth(xx, dt, 1.0, 0, win=9), dt) for xx in xs])
-    mv = np.abs(vd) > 0
-    flipped = bool(np.median(v[mv] / vd[mv]) < 0)
+    flipped = _turned(xs, vd, dt)
     notes = []
     if flipped:
         x = -x
