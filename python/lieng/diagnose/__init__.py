@@ -350,15 +350,11 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                                  "none available")}))
     # the primary effect: the one whose extension explains most of the training part
     named.sort(key=lambda k: -fitted[k][2])
-    if "load_variation" in named and "twin_branch" in named and named[0] == "twin_branch":
-        # the twin statistic is read from the slips' shape, which a load following the motion bends the
-        # same way (the friction rises or falls through each slip with N); the load is read from the
-        # measured channel: it comes first
-        named.remove("load_variation")
-        named.insert(0, "load_variation")
-        notes.append("twin_branch is significant too, but a load that follows the motion bends the slips the "
-                     "same way (friction rises or falls through each slip with the load); the measured load "
-                     "variation is named first")
+    if "load_variation" in named and "twin_branch" in named:
+        notes.append("load_variation and twin_branch are both named: a load that follows the motion bends the "
+                     "slips as a twin branch does (the friction rises or falls through each slip with the load), "
+                     "so one may stand for the other; the first is the one whose extension explains more of the "
+                     "training part")
     effects.sort(key=lambda e: named.index(e["effect"]))
     primary_ext, primary_gain = (fitted[named[0]][0], fitted[named[0]][1]) if named else (base, None)
     g0 = primary_gain or gain(pr, c, fn_used, base, base, tsplit, aux.get("ylow"))
