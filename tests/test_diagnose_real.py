@@ -44,6 +44,13 @@ def test_reciprocating_tribometer_every_stroke(tmp_path):
     sgn = np.sign(v[moving])
     n_strokes = 1 + int(np.count_nonzero(np.diff(sgn) != 0))
     assert abs(len(d["sliding"]["levels_mm"]) - n_strokes) <= 2
+    # independent: the friction opposes the stage's motion, so F / v < 0 mostly, and the level lieng reads
+    # (x turned to rise with the drive) is the friction's magnitude over the stiffness: positive, and the
+    # raw |F| in the strokes' second halves over k
+    assert np.median(F[moving] * np.sign(v[moving])) < 0
+    lv = np.asarray(d["sliding"]["levels_mm"], float)
+    assert np.all(lv > 0)
+    assert np.median(lv) == pytest.approx(np.median(np.abs(F[moving])) * 1e-6 / 37500 * 1e3, rel=0.2)
     # independent: in the second half of every stroke the friction (5-sample
     # mean) never drops by a tenth of its level within 50 ms: no stick-slip,
     # as the report says

@@ -308,6 +308,7 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
             warnings.append(why + "; the twin-branch evidence is withheld (a load that follows the motion, itself "
                                   "a candidate, also changes the slips' duration)")
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld)
+    warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
 

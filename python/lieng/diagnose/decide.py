@@ -17,7 +17,8 @@ p from the normal distribution (one-sided for effects with a direction).
 The family-wise false-alarm rate over the candidates is held at ALPHA by
 Holm's step-down procedure.  An effect is **named** when it is significant
 and its size S - m0 is at least the relevance margin stated in
-:data:`.evidence.MARGIN`.
+:data:`.evidence.MARGIN` (and at most the bound its own model allows,
+:data:`.evidence.UPPER`).
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ import numpy as np
 
 from ..errors import LiengInputError
 from .baseline import Params, pr_like, simulate
-from .evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, statistics
+from .evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, UPPER, statistics
 from .read import noise_level
 from .segment import Prepared, find_cycles
 
@@ -154,6 +155,10 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])
         r["margin"] = MARGIN[k]
         r["named"] = bool(r["significant"] and size >= MARGIN[k])
+        if r["named"] and k in UPPER and size > UPPER[k]:
+            r["named"] = False
+            r["beyond_model"] = (f"{k}: a size of {size:.3g} is beyond the {UPPER[k]} its model allows: the record "
+                                 f"departs from the baseline there for another reason (check --fn)")
     return rows
 
 

@@ -156,26 +156,32 @@ def strokes(vd, min_samples: int = 20) -> list:
 #: the slips' side of the increments' distribution must be this many times
 #: longer than the other for the tails to decide the orientation
 TAIL_RATIO = 2.0
+#: the sign of x' / vd decides the orientation when at least this share of
+#: the moving samples agree on it
+SLOPE_SHARE = 0.65
 
 
 def _turned(xs, vd, dt) -> bool:
     """Whether x is written opposite to the drive (its strokes already
-    turned forward).  Stick-slip: the slips are the fast moves, so the long
-    tail of the increments of x is on the slips' side, opposite to the rise
-    (the tails of the 0.1 % and 99.9 % quantiles, one at least TAIL_RATIO
-    times the other; robust to noise that swamps the slow rise sample to
-    sample).  Otherwise (steady sliding): the median of x' / vd over the
-    moving samples has the sign of the rise."""
-    d = np.concatenate([np.diff(smooth(xx, dt, 1.0, 0, win=9)) for xx in xs if xx.size > 10] or [np.zeros(0)])
-    if d.size >= 100:
-        lo, hi = -float(np.quantile(d, 0.001)), float(np.quantile(d, 0.999))
-        if lo > TAIL_RATIO * hi > 0:
-            return False
-        if hi > TAIL_RATIO * lo > 0:
-            return True
+    turned forward).  In the sticks (or in steady sliding after a reversal)
+    x moves with the drive: when most moving samples (SLOPE_SHARE) agree on
+    the sign of x' / vd, that sign decides.  When noise swamps the slow rise
+    sample to sample, the slips decide: they are the fast moves, so the long
+    tail of the increments of x (the 0.1 % and 99.9 % quantiles, one at least
+    TAIL_RATIO times the other) is opposite to the rise."""
     v = np.concatenate([np.gradient(smooth(xx, dt, 1.0, 0, win=9), dt) for xx in xs])
     mv = np.abs(vd) > 0
-    return bool(np.median(v[mv] / vd[mv]) < 0)
+    q = v[mv] / vd[mv]
+    share = float(np.mean(q > 0)) if q.size else 0.5
+    if max(share, 1.0 - share) < SLOPE_SHARE:
+        d = np.concatenate([np.diff(smooth(xx, dt, 1.0, 0, win=9)) for xx in xs if xx.size > 10] or [np.zeros(0)])
+        if d.size >= 100:
+            lo, hi = -float(np.quantile(d, 0.001)), float(np.quantile(d, 0.999))
+            if lo > TAIL_RATIO * hi > 0:
+                return False
+            if hi > TAIL_RATIO * lo > 0:
+                return True
+    return bool(np.median(q) < 0) if q.size else False
 
 
 def prepare(rec: Record) -> Prepared:
