@@ -308,3 +308,20 @@ def test_an_effect_beyond_its_own_model_is_reported_not_named():
     assert r["significant"] and not r["named"] and "beyond_model" in r
     st["twin_branch"] = 0.2
     assert decide(st, se, null)["twin_branch"]["named"]
+
+
+def test_replicates_skip_the_permutations_not_the_statistics():
+    """The baseline's replicates are read without the within-record
+    permutation tests (their p-values are not used): every statistic is the
+    same either way."""
+    from lieng.diagnose.evidence import statistics
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    rec = synthesize("drive_modulation", 1)
+    v0 = rec.v0_col if rec.v0_col is not None else rec.v0
+    pr = prepare(record_from_arrays(rec.t, rec.x, v0, rec.y))
+    c = find_cycles(pr, rec.fn)
+    full, _, aux = statistics(pr, c, rec.fn)
+    quick, _, aux0 = statistics(pr, c, rec.fn, nperm=0)
+    assert full == quick
+    assert aux["p_own"]["drive_modulation"] < 0.05 and aux0["p_own"]["drive_modulation"] == 1.0

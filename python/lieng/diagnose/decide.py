@@ -85,7 +85,7 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
             c = find_cycles(q, fn)
             if c.n < 3:
                 continue
-            st, _, aux = statistics(q, c, fn, y=yb, y_is_force=y_is_force, arcs=arcs)
+            st, _, aux = statistics(q, c, fn, y=yb, y_is_force=y_is_force, arcs=arcs, nperm=0)
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             continue
         st.update(aux["gof"])

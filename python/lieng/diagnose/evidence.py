@@ -376,7 +376,7 @@ def drive_scan(t, r, fmin, fmax, nperm=199, seed=0):
     return float(best[0]), f, amp, p
 
 
-def _drive(pr: Prepared, c: Cycles, fn: float):
+def _drive(pr: Prepared, c: Cycles, fn: float, nperm: int = 199):
     t, r = _stick_series(pr, c)
     per = c.periods(pr.t)
     if r.size < 8 or per.size < 2:
@@ -384,7 +384,7 @@ def _drive(pr: Prepared, c: Cycles, fn: float):
     f_ss = 1.0 / float(np.median(per))
     span = float(t[-1] - t[0])
     # from two cycles of the modulation in the record to half the stick rate (Nyquist of the stick sampling)
-    frac, f, amp, p = drive_scan(t, r, max(2.0 / span, 0.02 * f_ss), 0.5 * f_ss)
+    frac, f, amp, p = drive_scan(t, r, max(2.0 / span, 0.02 * f_ss), 0.5 * f_ss, nperm=nperm)
     return amp, 0.0, p, f
 
 
@@ -526,14 +526,16 @@ def _position(pr: Prepared, c: Cycles):
     return rng, 0.0, p
 
 
-def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arcs: bool = True
-               ) -> tuple[dict, dict, dict]:
+def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arcs: bool = True,
+               nperm: int = 199) -> tuple[dict, dict, dict]:
     """Every candidate's effect size and its standard error from the record's
     own scatter, and auxiliary values (D, the triggering line's frequency,
     the low-passed normal channel).  ``y`` overrides ``pr.y``; ``arcs``: the
     record's slips are arcs of a free oscillation near fn (the twin step is
     then fitted to x itself, otherwise read from the reverse construction;
-    a record and its replicates are read the same way)."""
+    a record and its replicates are read the same way); ``nperm``: the
+    permutations of the tests calibrated within the record (0 for the
+    baseline's replicates, whose own p-values are not used)."""
     y = pr.y if y is None else y
     D = c.amplitude(pr.x)
     D = D if D > 0 else 1.0
@@ -547,9 +549,9 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     st["static_ageing"], se["static_ageing"] = v / D, e / D
     v, e, f_tr = _triggering(pr, c, fn, y, y_is_force, D)
     st["triggering"], se["triggering"] = v, e
-    v, e, p_drv, f_drv = _drive(pr, c, fn)
+    v, e, p_drv, f_drv = _drive(pr, c, fn, nperm)
     st["drive_modulation"], se["drive_modulation"] = v, e
-    v, e, f_lvl, p_lvl = _drift(pr, c)
+    v, e, f_lvl, p_lvl = _drift(pr, c, nperm)
     st["friction_drift"], se["friction_drift"] = v / D, e / D
     v, e = _asymmetry(pr, c)
     st["direction_asymmetry"], se["direction_asymmetry"] = v / D, e / D
