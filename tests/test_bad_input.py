@@ -154,8 +154,9 @@ def test_json_outputs_are_strict(tmp_path, capsys):
     (["twodof", "--t-end", "0.001"], "--t-end"),
     (["sweep", str(CARDS / "figures" / "fig2_27.dat"), "--v0", "1:2:100000"], "--v0"),
     (["run", "lieng1", str(LIENG1), "-o", ""], "-o"),
+    (["sweep", str(CARDS / "figures" / "fig2_28.dat"), "--dmu", "0:1.5:5"], "--dmu 0:1.5:5"),
 ], ids=["mlien-omega", "mlien-dtheta", "trc-vel", "seed", "cycles0", "cycles-5", "cycles-huge", "o-empty",
-        "o-dot", "t-end", "sweep-n", "run-o-empty"])
+        "o-dot", "t-end", "sweep-n", "run-o-empty", "sweep-dmu-zero"])
 def test_bad_values_are_one_line(args, needle, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     srcs = {"mlien": MLIEN, "trc": TRC}

@@ -191,8 +191,9 @@ def _sweep(args) -> int:
     deck, x, y = _deck_char(args)
     if args.dmu is not None:
         fac = parse_range(args.dmu, "--dmu")
-        if min(fac) < 0:
-            raise LiengInputError(f"--dmu {args.dmu}: the factors of dmu0 must not be negative")
+        if min(fac) <= 0:
+            raise LiengInputError(f"--dmu {args.dmu}: the factors of dmu0 must be positive (at 0 the static peak's "
+                                  f"points fall onto the kinetic minimum and the characteristic has no slope there)")
         res = sweep_dmu(x, y, fac, v0=args.at_v0, mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
         head, unit, crit = "dmu0/dmu0_deck", "", "dmu_oc (self-sustained oscillation from)"
     else:
