@@ -45,9 +45,10 @@ __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles, one cycle ahead from the record's own state (from "
-          "each trough): stick time to the next slip's halfway crossing (/ mean period), peak and trough (/ drop D); mean slip waveform at 9 instants over "
-          "0.6 natural periods centred on each slip's halfway crossing (/ D); when the extension predicts the normal channel's part not locked to the motion, "
-          "its RMS difference in time (/ spread of y)")
+          "each trough): stick time to the next slip's halfway crossing (/ mean period), peak and trough (/ drop D); "
+          "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing (/ D); "
+          "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in "
+          "time (/ spread of y)")
 
 
 def subset(c: Cycles, sel) -> Cycles:
@@ -127,9 +128,10 @@ class Judge:
     record trough (the slider just stuck, at the record's displacement) the
     model runs on the record's drive and clock to its next slip, and its
     predicted stick time (to the next slip's halfway crossing, over the mean
-    period), peak and trough (over D) are compared with the record's, plus the mean slip waveform around the
-    halfway crossing of each predicted slip (over D) against the record's; e = sqrt(mean of the
-    per-cycle squares + mean of the waveform's squares [+ the normal channel's
+    period), peak and trough (over D) are compared with the record's, plus
+    the mean slip waveform around the halfway crossing of each predicted
+    slip (over D) against the record's; e = sqrt(mean of the per-cycle
+    squares + mean of the waveform's squares [+ the normal channel's
     unlocked part]).  A trajectory that parts from the record's (rounding,
     chaos, a noisy rig) costs one cycle, not the rest of the record."""
 
@@ -155,8 +157,7 @@ class Judge:
         self.rec = np.column_stack([(tslip - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,
                                     x[c.trough_i[k + 1]] / self.D])
         self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
-        waves = [_mid_wave(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k
-                 if j + 1 < c.n]
+        waves = [_mid_wave(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k]
         waves = [w for w in waves if w is not None]
         self.wave = np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan)
         self.mask = (pr.t >= lo) & (pr.t < hi)
