@@ -59,12 +59,19 @@ def _existing_ancestor(p: Path, option: str, given) -> Path:
             continue
         except OSError as exc:
             raise LiengInputError(f"{option} {given}: {a} cannot be used ({exc.strerror})") from None
-        if not stat.S_ISDIR(st.st_mode):
-            raise LiengInputError(f"{option} {given}: {a} is a file, not a directory")
-        if not os.access(a, os.W_OK | os.X_OK):
-            raise LiengInputError(f"{option} {given}: cannot create it: {a} is not writable")
+        _writable_dir(a, st, f"{option} {given}: {a} is a file, not a directory",
+                      f"{option} {given}: cannot create it: {a} is not writable")
         return a
     raise LiengInputError(f"{option} {given}: no existing directory above it")  # pragma: no cover
+
+
+def _writable_dir(path: Path, st, not_dir: str, not_writable: str) -> None:
+    """Raise ``not_dir`` unless ``st`` (of ``path``) is a directory, and
+    ``not_writable`` unless the directory can be written and entered."""
+    if not stat.S_ISDIR(st.st_mode):
+        raise LiengInputError(not_dir)
+    if not os.access(path, os.W_OK | os.X_OK):
+        raise LiengInputError(not_writable)
 
 
 def _owned(target: Path) -> set[str]:
@@ -115,10 +122,8 @@ def check_outdir(outdir, force: bool = False, option: str = "-o") -> Path:
         return target                       # pragma: no cover - the ancestor check raised
     except OSError as exc:
         raise LiengInputError(f"{option} {given}: cannot be used ({exc.strerror})") from None
-    if not stat.S_ISDIR(st.st_mode):
-        raise LiengInputError(f"{option} {given}: exists and is not a directory")
-    if not os.access(target, os.W_OK | os.X_OK):
-        raise LiengInputError(f"{option} {given}: the directory is not writable")
+    _writable_dir(target, st, f"{option} {given}: exists and is not a directory",
+                  f"{option} {given}: the directory is not writable")
     man = target / MANIFEST
     if os.path.lexists(man) and (man.is_symlink() or not man.is_file()):
         raise LiengInputError(f"{option} {given}: {man} is not lieng's list of outputs (not a regular file): "

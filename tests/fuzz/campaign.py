@@ -80,18 +80,16 @@ def run_isolated(case, timeout: float) -> dict:
     out = None
     deadline = t0 + timeout + HARD_GRACE
     while time.monotonic() < deadline:
-        if recv.poll(0.2):
+        ready = recv.poll(0.2)
+        if not ready and not p.is_alive():
+            ready = recv.poll(0.1)
+            if not ready:
+                break
+        if ready:
             try:
                 out = recv.recv()
             except EOFError:
                 out = None
-            break
-        if not p.is_alive():
-            if recv.poll(0.1):
-                try:
-                    out = recv.recv()
-                except EOFError:
-                    out = None
             break
     p.join(timeout=5 if out is not None else 0.1)
     if p.is_alive():

@@ -39,7 +39,7 @@ import numpy as np
 from ..errors import LiengInputError
 from .baseline import Params, model_y, pr_like, run_slice, simulate, slip_friction
 from .evidence import _stick_series, drive_scan, level_fit, lowpass
-from .segment import Cycles, Prepared, find_cycles
+from .segment import Cycles, Prepared, find_cycles, first_below
 
 __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
 
@@ -87,31 +87,22 @@ def _half_crossing(t, x, i0: int, i1: int):
         return None
     seg = x[i0:i1]
     half = 0.5 * (float(seg[0]) + float(np.min(seg)))
-    below = np.flatnonzero(seg < half)
-    if below.size == 0 or below[0] == 0:
-        return None
-    j = i0 + int(below[0])
-    a, b = float(x[j - 1]) - half, float(x[j]) - half
-    return (float(t[j - 1] + (t[j] - t[j - 1]) * a / (a - b)) if a != b else float(t[j])), half
+    th = first_below(t[i0:i1], seg, half)
+    return None if th is None else (th, half)
 
 
-def _mid_wave(t, x, i0: int, i1: int, tau):
-    """The slip seen from its halfway crossing (:func:`_half_crossing`):
-    x(t_half + tau) - x_half, or None when that window leaves the samples."""
+def _slip(t, x, i0: int, i1: int, tau):
+    """When the slip from ``i0`` to ``i1`` happens (its halfway crossing, or
+    its peak's time when it has none) and the slip seen from that crossing,
+    x(t_half + tau) - x_half (None when it has none or the window leaves the
+    samples)."""
     h = _half_crossing(t, x, i0, i1)
     if h is None:
-        return None
+        return float(t[i0]), None
     tt = h[0] + tau
     if tt[0] < t[0] or tt[-1] > t[-1]:
-        return None
-    return np.interp(tt, t, x) - h[1]
-
-
-def _slip_time(t, x, i0: int, i1: int) -> float:
-    """When the slip from ``i0`` to ``i1`` happens: its halfway crossing, or
-    its peak's time when it has none."""
-    h = _half_crossing(t, x, i0, i1)
-    return h[0] if h is not None else float(t[i0])
+        return h[0], None
+    return h[0], np.interp(tt, t, x) - h[1]
 
 
 def _msq(a) -> float:
@@ -153,12 +144,12 @@ class Judge:
         span = c.trough_i[k + 1] - i0
         self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, k)]
         t, x = pr.t, pr.x
-        tslip = np.array([_slip_time(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1) for j in k])
+        self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
+        slips = [_slip(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k]
+        tslip = np.array([ts for ts, _ in slips])
         self.rec = np.column_stack([(tslip - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,
                                     x[c.trough_i[k + 1]] / self.D])
-        self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
-        waves = [_mid_wave(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k]
-        waves = [w for w in waves if w is not None]
+        waves = [w for _, w in slips if w is not None]
         self.wave = np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan)
         self.mask = (pr.t >= lo) & (pr.t < hi)
         if pr.y is not None:
@@ -186,9 +177,8 @@ class Judge:
             end = int(back[0]) if back.size else xs.size - 1
             ip = int(np.argmax(xs[:end + 1]))
             it = ip + int(np.argmin(xs[ip:end + 1]))
-            pred[row] = ((_slip_time(t[sl], xs, ip, it + 1) - t[sl.start]) / self.P, xs[ip] / self.D,
-                         xs[it] / self.D)
-            w = _mid_wave(t[sl], xs, ip, it + 1, self.tau)
+            ts, w = _slip(t[sl], xs, ip, it + 1, self.tau)
+            pred[row] = ((ts - t[sl.start]) / self.P, xs[ip] / self.D, xs[it] / self.D)
             if w is not None:
                 waves.append(w)
         dc = self.rec - pred

@@ -349,6 +349,17 @@ def slip_arcs(p: Prepared, c: Cycles, extend: int = 1):
 FALL_FRACTION = 2.0 * math.acos(0.8) / math.pi
 
 
+def first_below(t, x, level: float) -> float | None:
+    """The first moment ``x`` falls below ``level``, linear between samples;
+    None when it never does or starts below it."""
+    below = np.flatnonzero(x < level)
+    if below.size == 0 or below[0] == 0:
+        return None
+    j = int(below[0])
+    a, b = float(x[j - 1]) - level, float(x[j]) - level
+    return float(t[j - 1] + (t[j] - t[j - 1]) * a / (a - b))
+
+
 def slip_durations(p: Prepared, c: Cycles) -> np.ndarray:
     """Each slip's duration (s) read from its fall: the time x takes from
     10 % to 90 % of the way from its peak to its trough, over
@@ -365,14 +376,9 @@ def slip_durations(p: Prepared, c: Cycles) -> np.ndarray:
             out[j] = np.nan
             continue
         tt = t[a:b + 1]
-        cross = []
-        for lev in (seg[0] - 0.1 * drop, seg[-1] + 0.1 * drop):
-            i = int(np.argmax(seg < lev))
-            if i == 0:
-                break
-            x0, x1 = float(seg[i - 1]) - lev, float(seg[i]) - lev
-            cross.append(float(tt[i - 1] + (tt[i] - tt[i - 1]) * x0 / (x0 - x1)))
-        out[j] = (cross[1] - cross[0]) / FALL_FRACTION if len(cross) == 2 else np.nan
+        t10 = first_below(tt, seg, float(seg[0]) - 0.1 * drop)
+        t90 = first_below(tt, seg, float(seg[-1]) + 0.1 * drop)
+        out[j] = (t90 - t10) / FALL_FRACTION if t10 is not None and t90 is not None else np.nan
     return out
 
 
