@@ -277,6 +277,29 @@ def test_friction_along_the_track(tmp_path, amp, named):
     assert d["evidence"]["position_dependence"]["named"] is named, d["evidence"]["position_dependence"]
 
 
+@pytest.mark.parametrize("c,named", [(0.3, True), (-0.3, True), (0.0, False)])
+def test_a_normal_force_that_follows_the_force_as_written_on_a_reciprocating_rig(tmp_path, c, named):
+    """A reciprocating force record whose normal force follows the friction
+    force as the rig wrote it (signed: it changes sign with the direction, so
+    no single line in the turned force fits it) is a load variation, and one
+    that falls as the friction rises is one too (found on an independent
+    generator's records: 'the friction runs against N' had hidden them);
+    a constant normal force names nothing."""
+    t, x, v = _reciprocating_coulomb(lambda p: 1.0)
+    N = 2.0 * (1.0 + c * x) + 0.002 * np.random.default_rng(3).standard_normal(t.size)
+    pos = np.r_[0, np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))]
+    p = tmp_path / "recip_force.csv"
+    _write(p, {"time [s]": t, "friction [mN]": 200.0 * x, "normal [N]": N, "position [mm]": pos})
+    assert main(["diagnose", str(p), "--fn", "20", "--stiffness", "200", "-o", str(tmp_path / "o"), "-q",
+                 "--no-plots"]) == 0
+    d = json.loads((tmp_path / "o" / "diagnosis.json").read_text())
+    assert d["evidence"]["load_variation"]["named"] is named, d["evidence"]["load_variation"]
+    if named:
+        lock = 2.0 * (1.0 + c * x)                       # the normal force without its noise
+        pp = (np.percentile(lock, 97.5) - np.percentile(lock, 2.5)) / np.mean(N)
+        assert d["evidence"]["load_variation"]["statistic"] == pytest.approx(pp, rel=0.15)
+
+
 @pytest.mark.parametrize("sign", [1.0, -1.0])
 def test_orientation_when_noise_swamps_the_rise(sign):
     """Noise that hides the stick's slow rise sample to sample (a third of

@@ -20,8 +20,8 @@ import numpy as np
 from ..errors import LiengInputError
 from ..outputs import finite_json as _finite
 from .baseline import Params, calibrate_fn, fit_baseline
-from .decide import ALPHA, decide, misfit, null_replicates
-from .evidence import CANDIDATES, MARGIN, SLIDING, sliding_statistics, statistics, y_on_motion
+from .decide import ALPHA, calibrate, decide, misfit, null_replicates
+from .evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics, y_on_motion
 from .extend import METRIC, Judge, candidates, gain, refine, split, subset
 from .read import Record, read_record, record_from_arrays, record_from_trc_deck
 from .segment import estimate_fn, find_cycles, prepare, slip_seconds
@@ -173,6 +173,60 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
                      sliding=_finite(sliding),
                      fn=fn or 0.0, fn_source=src, fn_data=fd, fn_data_se=fse, notes=notes, warnings=warnings,
                      n_cycles=c_n)
+
+
+#: pairs of candidates that can stand for each other (a load that follows the
+#: motion bends the slips as a twin branch does)
+RIVALS = ("twin_branch", "load_variation")
+
+
+def _given(pr, k, other, other_ext, fn, u_fn, st, row, y_is_force, arcs, ylow, replicates, budget):
+    """Candidate ``k``'s statistic calibrated again by replicates of the
+    fitted extension ``other_ext`` of its rival (a load extension's load
+    follows the measured channel): (p, effect size), one-sided for effects
+    with a direction; None when too few replicates."""
+    null2, n2 = null_replicates(pr, other_ext, fn, u_fn, B=max(replicates // 2, 10), budget=0.5 * budget,
+                                seed=1, y_is_force=y_is_force, arcs=arcs,
+                                ylow=ylow if other_ext.load_k else None)
+    v = null2[k]
+    v = v[np.isfinite(v)]
+    if v.size < 5:
+        return None
+    m0, s0, d, _, _, p = calibrate(float(st[k]), row["se"] or 0.0, v, k in ONE_SIDED)
+    row["given_rival"] = {"rival": other, "null_mean": m0, "null_sd": s0, "effect_size": d, "p": p,
+                          "replicates": n2}
+    return p, (d if k in ONE_SIDED else abs(d))
+
+
+def _rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_force, arcs, ylow, replicates,
+            budget):
+    """When a twin branch and a load variation are both named, each is tested
+    again against replicates of the other's fitted extension (at the level
+    Holm's procedure gave it, by its margin), and one that the other's
+    extension accounts for is not named.  A normal *force* is independent
+    evidence of the load (its own variation), which no twin branch makes:
+    then only the twin is tested.  When neither survives the other, both
+    stay named (the record cannot tell them apart)."""
+    if not all(k in named and fitted[k][0] is not base for k in RIVALS):
+        return
+    tests = [("twin_branch", "load_variation")] + ([] if y_is_force else [("load_variation", "twin_branch")])
+    keep = {}
+    for k, other in tests:
+        r = _given(pr, k, other, fitted[other][0], fn, u_fn, st, rows[k], y_is_force, arcs, ylow, replicates, budget)
+        keep[k] = r is None or (r[0] <= rows[k]["holm_level"] and r[1] >= MARGIN[k])
+    if not any(keep.values()) and len(keep) == 2:
+        return
+    for k, ok in keep.items():
+        if ok:
+            continue
+        g = rows[k]["given_rival"]
+        other = g["rival"]
+        rows[k]["named"] = False
+        named.remove(k)
+        effects[:] = [e for e in effects if e["effect"] != k]
+        notes.append(f"{k} is not named: the fitted {other} extension gives records like this one in it "
+                     f"({k} statistic {st[k]:.3g} against {g['null_mean']:.3g} +- {g['null_sd']:.2g} in "
+                     f"its {g['replicates']} replicates, p = {g['p']:.2g})")
 
 
 def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budget: float = 25.0,
@@ -349,6 +403,8 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                                 "extension": "fitted" if ext is not base else
                                 ("none better than the baseline on the training part" if cands else
                                  "none available")}))
+    _rivals(pr, base, fitted, fn_used, u_fn, st, rows, named, effects, notes, rec.y_is_force, arcs, aux.get("ylow"),
+            replicates, budget)
     # the primary effect: the one whose extension explains most of the training part
     named.sort(key=lambda k: -fitted[k][2])
     if "load_variation" in named and "twin_branch" in named:

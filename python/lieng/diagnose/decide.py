@@ -15,7 +15,9 @@ the replicates' mean and spread and se the record's own standard error
 (its cycle-to-cycle scatter: a real rig is noisier than any simulation);
 p from the normal distribution (one-sided for effects with a direction).
 The family-wise false-alarm rate over the candidates is held at ALPHA by
-Holm's step-down procedure.  An effect is **named** when it is significant
+Holm's step-down procedure (a load that follows the motion and a twin
+branch both named: each is tested again against replicates of the other's
+fitted extension, at the level Holm gave it; see ``lieng.diagnose._rivals``).  An effect is **named** when it is significant
 and its size S - m0 is at least the relevance margin stated in
 :data:`.evidence.MARGIN` (and at most the bound its own model allows,
 :data:`.evidence.UPPER`).
@@ -34,7 +36,7 @@ from .evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, UPPER, sta
 from .read import noise_level
 from .segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "null_replicates", "decide", "misfit"]
+__all__ = ["ALPHA", "null_replicates", "calibrate", "decide", "misfit"]
 
 #: family-wise false-alarm rate
 ALPHA = 0.05
@@ -58,11 +60,15 @@ def _norm_ppf(p):
 
 
 def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int = 39, budget: float = 25.0,
-                    seed: int = 0, progress=None, y_is_force: bool = False, arcs: bool = True):
+                    seed: int = 0, progress=None, y_is_force: bool = False, arcs: bool = True, ylow=None):
     """The candidates' statistics on B baseline replicates (module docstring).
 
-    Returns a dict name -> array of the replicates' values, and the
-    replicates' simulated noiseless traces' first one (for plots)."""
+    ``base`` may be an extension of the baseline: with ``ylow`` (the
+    record's low-passed normal channel) its load follows the measured
+    channel, and the replicates' normal channel is the record's own.
+
+    Returns a dict name -> array of the replicates' values, and the number
+    of replicates analysed."""
     rng = np.random.default_rng(seed)
     sx = noise_level(pr.x)
     y = pr.y
@@ -72,10 +78,12 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
     done = 0
     for b in range(B):
         fb = fn * (1.0 + u_fn * rng.uniform(-1.0, 1.0))
-        xs, vs, _ = simulate(pr, base, fb)
+        xs, vs, _ = simulate(pr, base, fb, ylow)
         xb = xs + sx * rng.standard_normal(xs.size)
         yb = None
-        if y is not None:
+        if y is not None and ylow is not None:
+            yb = y                       # the measured load drives the model: the channel is the record's
+        elif y is not None:
             # a reading of the normal channel: its part locked to the motion is kept (crosstalk is not a
             # load effect); a normal force: constant under the baseline's constant load
             lock = 0.0 if y_is_force else base.y_c[1] * xs + base.y_c[2] * vs
@@ -98,6 +106,19 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
         if b >= 8 and el * (b + 2) / (b + 1) > budget:
             break
     return {k: np.asarray(v, float) for k, v in vals.items()}, done
+
+
+def calibrate(S: float, se: float, v, one_sided: bool) -> tuple:
+    """A statistic S with standard error se against the finite replicates'
+    values v (module docstring): (m0, s0, S - m0, its standard deviation, z,
+    p)."""
+    m0, s0 = float(np.mean(v)), float(np.std(v, ddof=1))
+    den = math.sqrt(max(s0, se) ** 2 + s0 ** 2 / v.size)
+    d = S - m0
+    z = d / den if den > 0 else (math.copysign(50.0, d) if d else 0.0)
+    z = float(np.clip(z, -50.0, 50.0))
+    p = _norm_sf(z) if one_sided else 2.0 * _norm_sf(abs(z))
+    return m0, s0, d, den, z, float(p)
 
 
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
@@ -132,13 +153,8 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
             rows[k] = dict(statistic=S, null_mean=0.0, null_sd=0.0, se=float(se[k]) if math.isfinite(se[k]) else None,
                            z=0.0, p=1.0, effect_size=0.0, applicable=False)
             continue
-        m0, s0 = float(np.mean(v)), float(np.std(v, ddof=1))
         e = float(se[k]) if math.isfinite(se[k]) else 0.0
-        den = math.sqrt(max(s0, e) ** 2 + s0 ** 2 / v.size)
-        d = S - m0
-        z = d / den if den > 0 else (math.copysign(50.0, d) if d else 0.0)
-        z = float(np.clip(z, -50.0, 50.0))
-        p = _norm_sf(z) if k in ONE_SIDED else 2.0 * _norm_sf(abs(z))
+        m0, s0, d, den, z, p = calibrate(S, e, v, k in ONE_SIDED)
         rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=e, z=z, p=float(p), effect_size=d, applicable=True,
                        interval=[d - 1.96 * den, d + 1.96 * den])
     # Holm's step-down over the applicable candidates
@@ -150,6 +166,7 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         if not sig:
             stop = True
         rows[k]["significant"] = bool(sig)
+        rows[k]["holm_level"] = alpha / (m - i)
     for k, r in rows.items():
         r.setdefault("significant", False)
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])

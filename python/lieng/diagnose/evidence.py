@@ -26,9 +26,8 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     channel; the friction change the normal channel explains across a cycle
     (its coefficient times the channel's peak-to-peak) over D.  With a
     normal *force* channel the load variation is measured directly: the
-    relative peak-to-peak of the part of N locked to the motion (friction
-    follows the load: Amontons), provided the regression does not have the
-    friction run against N.  Needs a normal channel that varies.
+    relative peak-to-peak of the part of N locked to the motion (fitted in
+    each drive direction apart).  Needs a normal channel that varies.
 ``static_ageing``
     The peak against the log of the stick time (trough to next peak): the
     change over the record's range of stick times, over D, one-sided (the
@@ -247,17 +246,18 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
     if not y_is_force:
         return v, _jackknife(est, units.size), span
     # a normal force: its relative change locked to the motion is the load
-    # variation itself (friction follows the load, Amontons), unless the
-    # friction runs against it
+    # variation itself, whichever way the friction follows it (the slips'
+    # shape cannot tell a load locked to x from a stiffer spring when fn is
+    # read off the slips, so the regression above may have either sign)
     mean = abs(float(np.mean(y)))
-    if not mean > 0 or not v > 0:
+    if not mean > 0:
         return 0.0, math.inf, span
     blocks = np.array_split(np.arange(y.size), 10)
+    sg = directions(pr)
 
     def rel(keep):
         i = np.concatenate([b for b, k in zip(blocks, keep) if k])
-        yc = y_on_motion(pr.x[i], c.v[i], y[i])
-        lock = yc[1] * pr.x[i] + yc[2] * c.v[i]
+        lock = y_locked(pr.x[i], c.v[i], y[i], sg[i])
         return float((np.percentile(lock, 97.5) - np.percentile(lock, 2.5)) / mean)
 
     return rel(np.ones(10, bool)), _jackknife(rel, 10), span
@@ -320,11 +320,31 @@ def y_on_motion(x, v, y):
     return tuple(float(a) for a in coef)
 
 
+def directions(pr: Prepared) -> np.ndarray:
+    """The drive's direction (+1, -1) of every sample of the turned record."""
+    return np.concatenate([np.full(s.n, s.sign) for s in pr.strokes])
+
+
+def y_locked(x, v, y, sign):
+    """The part of y locked to the motion, sample by sample: y ~ c0 + c1 x +
+    c2 x' fitted in each drive direction apart (x is turned forward stroke by
+    stroke, and a load that follows the force as the rig wrote it changes
+    sign with the direction), kept only when the fits explain more than a
+    third of y's variance (else y's mean)."""
+    A = np.column_stack([np.ones(x.size), x, v])
+    fit = np.full(y.size, float(np.mean(y)))
+    for d in (1, -1):
+        m = sign == d
+        if np.count_nonzero(m) > 3:
+            fit[m] = A[m] @ np.linalg.lstsq(A[m], y[m], rcond=None)[0]
+    r2 = 1.0 - float(np.var(y - fit)) / max(float(np.var(y)), 1e-300)
+    return fit if r2 >= 1.0 / 3.0 else np.full(y.size, float(np.mean(y)))
+
+
 def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
     f0 = 1.0 / float(np.median(c.periods(pr.t))) if np.any(c.next_ok) else None
     if y is not None:
-        yc = y_on_motion(pr.x, c.v, y)
-        resid = y - (yc[0] + yc[1] * pr.x + yc[2] * c.v)
+        resid = y - y_locked(pr.x, c.v, y, directions(pr))
         f, a, snr = spectral_line(resid, pr.dt, 2.0 * fn)
         scale = abs(float(np.mean(y))) if y_is_force else D
     else:
