@@ -348,3 +348,27 @@ def test_replicates_skip_the_permutations_not_the_statistics():
     quick, _, aux0 = statistics(pr, c, rec.fn, nperm=0)
     assert full == quick
     assert aux["p_own"]["drive_modulation"] < 0.05 and aux0["p_own"]["drive_modulation"] == 1.0
+
+
+@pytest.mark.parametrize("extra,needle", [(["--fn", "@fn", "--fn-uncertainty", "0"], "--fn-uncertainty 0.0"),
+                                          (["--fn-uncertainty", "0.01"], "give --fn")])
+def test_fn_uncertainty_is_checked(tmp_path, capsys, extra, needle):
+    """--fn-uncertainty outside 0.1-50 %, or without the --fn it qualifies:
+    one line naming it, exit 2, no output directory."""
+    rec = synthesize("none", 0)
+    p = tmp_path / "r.csv"
+    _write(p, {"t": rec.t, "x": rec.x})
+    extra = [repr(rec.fn) if a == "@fn" else a for a in extra]
+    assert main(["diagnose", str(p), "--v0", repr(rec.v0), "-o", str(tmp_path / "o"), "-q", *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert needle in err and len(err.splitlines()) == 1 and not (tmp_path / "o").exists()
+
+
+def test_the_twin_calibration_follows_the_stated_fn_uncertainty():
+    """The replicates draw fn within the stated uncertainty: an fn known to
+    1 % gives the twin statistic a narrower null than the default 5 % (the
+    slips' shape and fn trade off: ch. 4.1's reverse construction)."""
+    rec = synthesize("none", 1)
+    r = record_from_arrays(rec.t, rec.x, rec.v0_col if rec.v0_col is not None else rec.v0, rec.y)
+    sd = [diagnose(r, rec.fn, fn_uncertainty=u).evidence["twin_branch"]["null_sd"] for u in (0.01, 0.05)]
+    assert sd[0] < 0.7 * sd[1], sd

@@ -228,7 +228,8 @@ def _diagnose(args) -> int:
         def progress(k, n):
             print(f"\rcalibrating against the baseline: replicate {k}/{n}", end="" if k < n else "\n",
                   file=sys.stderr, flush=True)
-    d = diagnose(rec, fn, progress=progress)
+    extra = {} if args.fn_uncertainty is None else {"fn_uncertainty": args.fn_uncertainty}
+    d = diagnose(rec, fn, progress=progress, **extra)
     with staged_outdir(args.outdir, args.force) as tmp:
         names = write_outputs(d, tmp, str(args.data), plots=not args.no_plots)
     if args.json:
@@ -430,6 +431,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="drive velocity (mm/s) when the record has no v0/position column")
     dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "
                     "estimated from the slips when not given (a TRC deck gives it: OMNH)")
+    dg.add_argument("--fn-uncertainty", type=float, metavar="REL",
+                    help="relative uncertainty of --fn (default 0.05); the slip-shape evidence is calibrated over "
+                         "it: an fn measured to 0.01 lets smaller twin branches through")
     dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record; estimated from the sticks when not given")
     dg.add_argument("-o", "--outdir", required=True, help="output directory")

@@ -229,8 +229,8 @@ def _rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_fo
                      f"its {g['replicates']} replicates, p = {g['p']:.2g})")
 
 
-def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budget: float = 25.0,
-             progress=None) -> Diagnosis:
+def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN_UNCERTAINTY,
+             replicates: int = 39, budget: float = 25.0, progress=None) -> Diagnosis:
     """Diagnose a record (see the package docstring and the stage modules).
 
     Parameters
@@ -240,7 +240,13 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     fn : float, optional
         Natural frequency of the tangential mode (Hz).  Estimated from the
         slips when not given; when given, taken to be within
-        :data:`FN_UNCERTAINTY` and checked against the slips.
+        ``fn_uncertainty`` and checked against the slips.
+    fn_uncertainty : float, optional
+        The relative uncertainty of a given ``fn`` (default
+        :data:`FN_UNCERTAINTY`, 5 %).  The slip-shape evidence (twin branch,
+        a load read from a normal reading) is calibrated over it: an fn
+        measured to 1 % (ringing of the slider, a hammer test) lets smaller
+        effects through.  Between 0.1 % and 50 %.
     replicates : int, optional
         Baseline replicates for the calibration (fewer when ``budget``
         seconds run out).
@@ -253,6 +259,10 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
     """
     if fn is not None and not (math.isfinite(fn) and fn > 0):
         raise LiengInputError(f"--fn {fn}: the natural frequency must be a positive number (Hz)")
+    if not (math.isfinite(fn_uncertainty) and 0.001 <= fn_uncertainty <= 0.5):
+        raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: a relative uncertainty between 0.001 and 0.5")
+    if fn is None and fn_uncertainty != FN_UNCERTAINTY:
+        raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: it is the uncertainty of a given --fn; give --fn")
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
     warnings = []
@@ -310,12 +320,12 @@ def diagnose(rec: Record, fn: float | None = None, *, replicates: int = 39, budg
                 f"bends the reverse construction (its two branches part like a twin branch, the friction follows x "
                 f"like a load): give --fn")
     else:
-        fn_used, src, u_fn = float(fn), "given (--fn)", FN_UNCERTAINTY
+        fn_used, src, u_fn = float(fn), "given (--fn)", fn_uncertainty
         fcal = calibrate_fn(pr, fd if fd is not None else fn)
         if fcal is not None and abs(fcal / fn - 1.0) > FN_CHECK:
             warnings.append(f"the slips say fn = {fcal:.4g} Hz (the baseline's slips last as long as the record's "
                             f"there), {100 * (fcal / fn - 1):+.0f} % from --fn {fn:g}: check --fn (the slip-shape "
-                            f"evidence assumes it within {100 * FN_UNCERTAINTY:.0f} %)")
+                            f"evidence assumes it within {100 * u_fn:.0g} %)")
     # the slip-shape evidence (twin, load) reads the slips as arcs of a free
     # oscillation at fn: withheld when they are not (heavily damped or
     # rate-dependent slips, or an fn far off)

@@ -29,9 +29,10 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     relative peak-to-peak of the part of N locked to the motion (fitted in
     each drive direction apart).  Needs a normal channel that varies.
 ``static_ageing``
-    The peak against the log of the stick time (trough to next peak): the
-    change over the record's range of stick times, over D, one-sided (the
-    peak grows with the stick time).  Needs stick times that vary.
+    The peak against the log of the stick time (trough to next peak, also
+    across a hold): the change over the record's whole range of stick times,
+    over D, one-sided (the peak grows with the stick time).  Needs stick
+    times that vary.
 ``triggering``
     The strongest spectral line above 2 fn that is not a harmonic of the
     stick-slip, in the normal channel less its part locked to the motion (or
@@ -263,18 +264,23 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
     return rel(np.ones(10, bool)), _jackknife(rel, 10), span
 
 
-def _ageing(pr: Prepared, c: Cycles):
-    k = np.flatnonzero(c.next_ok)
-    if k.size < 4:
-        return 0.0, math.inf, 0.0
+def stick_times(pr: Prepared, c: Cycles):
+    """Each stick's duration (a slip's trough to the next peak of the same
+    stroke, also across a hold in which x relaxes) and the peak it ends in:
+    (index of the slip before, seconds, peak x)."""
+    k = np.flatnonzero(c.stroke[1:] == c.stroke[:-1]) if c.n > 1 else np.array([], int)
     ts = pr.t[c.peak_i[k + 1]] - pr.t[c.trough_i[k]]
-    pk = pr.x[c.peak_i[k + 1]]
     ok = ts > 0
-    ts, pk = ts[ok], pk[ok]
+    return k[ok], ts[ok], pr.x[c.peak_i[k[ok] + 1]]
+
+
+def _ageing(pr: Prepared, c: Cycles):
+    _, ts, pk = stick_times(pr, c)
     if ts.size < 4:
         return 0.0, math.inf, 0.0
     lt = np.log(ts)
-    rng = float(np.percentile(lt, 95) - np.percentile(lt, 5))
+    # the whole range: in a slide-hold-slide record the few sticks through a hold carry the evidence
+    rng = float(np.ptp(lt))
     if rng < 0.3:                        # stick times within 35 %: ageing cannot be told from a higher FS
         return 0.0, math.inf, rng
     X = np.column_stack([np.ones(lt.size), lt - lt.mean()])

@@ -38,7 +38,7 @@ import numpy as np
 
 from ..errors import LiengInputError
 from .baseline import Params, model_y, pr_like, run_slice, simulate, slip_friction
-from .evidence import _stick_series, drive_scan, level_fit, lowpass
+from .evidence import _stick_series, drive_scan, level_fit, lowpass, stick_times
 from .segment import Cycles, Prepared, find_cycles, first_below
 
 __all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
@@ -286,14 +286,18 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                         out.append(lvl(base.copy(load_kx=kx, load_xref=xref,
                                                  fs=float(np.median(pr.x[c.peak_i[ctr_sel]] / ld)))))
     elif effect == "static_ageing":
-        k = np.flatnonzero(c.next_ok & ctr_sel)
-        if k.size >= 4:
-            ts = pr.t[c.peak_i[k + 1]] - pr.t[c.trough_i[k]]
-            pk = pr.x[c.peak_i[k + 1]]
-            ok = ts > 0
-            b, a0 = np.polyfit(np.log(ts[ok]), pk[ok], 1)
+        k, ts, pk = stick_times(pr, c)
+        # the peak's growth from all sticks and from those between two slips alone (a hold in which x
+        # relaxes gives the stick through it a lower peak than its duration alone would)
+        sels = [ctr_sel[k]]
+        if not np.array_equal(sels[0], sels[0] & c.next_ok[k]):
+            sels.append(sels[0] & c.next_ok[k])
+        for sel in sels:
+            if np.count_nonzero(sel) < 4 or np.ptp(np.log(ts[sel])) <= 0:
+                continue
+            b, a0 = np.polyfit(np.log(ts[sel]), pk[sel], 1)
             for ftau in (0.01, 0.1, 0.5):
-                tau = ftau * float(np.min(ts[ok]))
+                tau = ftau * float(np.min(ts[sel]))
                 fs = max(a0 + b * math.log(tau), 0.2 * base.fs)
                 for sc in (0.8, 1.0, 1.25):
                     out.append(lvl(base.copy(age_tau=tau, fs=fs, age_a=sc * b / fs)))
