@@ -258,7 +258,8 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
 
     def rel(keep):
         i = np.concatenate([b for b, k in zip(blocks, keep) if k])
-        lock = y_locked(pr.x[i], c.v[i], y[i], sg[i])
+        fit, dmean = y_locked(pr.x[i], c.v[i], y[i], sg[i])
+        lock = fit - dmean              # a normal force that differs between the directions is no load locked
         return float((np.percentile(lock, 97.5) - np.percentile(lock, 2.5)) / mean)
 
     return rel(np.ones(10, bool)), _jackknife(rel, 10), span
@@ -332,25 +333,25 @@ def directions(pr: Prepared) -> np.ndarray:
 
 
 def y_locked(x, v, y, sign):
-    """The part of y locked to the motion, sample by sample: y ~ c0 + c1 x +
-    c2 x' fitted in each drive direction apart (x is turned forward stroke by
-    stroke, and a load that follows the force as the rig wrote it changes
-    sign with the direction), kept only when the fits explain more than a
-    third of y's variance (else y's mean)."""
-    A = np.column_stack([np.ones(x.size), x, v])
-    fit = np.full(y.size, float(np.mean(y)))
+    """The part of y locked to the motion, sample by sample, and y's mean,
+    in each drive direction apart (:func:`y_on_motion` there: x is turned
+    forward stroke by stroke, and a load that follows the force as the rig
+    wrote it changes sign with the direction): (locked part, its direction's
+    mean)."""
+    fit, mean = np.empty(y.size), np.empty(y.size)
     for d in (1, -1):
         m = sign == d
-        if np.count_nonzero(m) > 3:
-            fit[m] = A[m] @ np.linalg.lstsq(A[m], y[m], rcond=None)[0]
-    r2 = 1.0 - float(np.var(y - fit)) / max(float(np.var(y)), 1e-300)
-    return fit if r2 >= 1.0 / 3.0 else np.full(y.size, float(np.mean(y)))
+        if np.any(m):
+            c0, c1, c2 = y_on_motion(x[m], v[m], y[m])
+            fit[m] = c0 + c1 * x[m] + c2 * v[m]
+            mean[m] = np.mean(y[m])
+    return fit, mean
 
 
 def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
     f0 = 1.0 / float(np.median(c.periods(pr.t))) if np.any(c.next_ok) else None
     if y is not None:
-        resid = y - y_locked(pr.x, c.v, y, directions(pr))
+        resid = y - y_locked(pr.x, c.v, y, directions(pr))[0]
         f, a, snr = spectral_line(resid, pr.dt, 2.0 * fn)
         scale = abs(float(np.mean(y))) if y_is_force else D
     else:
