@@ -289,6 +289,14 @@ def _regularise(path, t, chans, notes) -> dict:
               f"{MAX_SAMPLES}")
     out = {"t": t, **chans}
     if np.max(d) > 1.01 * dt or np.min(d) < 0.99 * dt:
+        # spikes out first, on the samples as read: interpolated onto the grid, a spike between two grid
+        # points becomes two raised samples, no longer isolated
+        for k in ("x", "y"):
+            if chans.get(k) is not None:
+                chans[k], nsp = despike(chans[k])
+                if nsp:
+                    notes.append(f"{nsp} isolated spikes in {k} replaced by their neighbours' mean (before "
+                                 f"resampling)")
         gaps = int(np.count_nonzero(d > 1.5 * dt))
         tu = t[0] + dt * np.arange(int(math.floor(span / dt + 1e-9)) + 1)
         out = {"t": tu}
