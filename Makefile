@@ -11,7 +11,7 @@ STAMP  := $(VENV)/.lieng-installed
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SOURCES := pyproject.toml meson.build $(wildcard cards/*.dat cards/figures/*.dat) $(wildcard fortran/*.f90) fortran/f2py_f2cmap $(wildcard python/lieng/*.py python/lieng/*.md python/lieng/*/*.py)
 
-.PHONY: all demo test bench bench-diagnose gfortran venv install clean distclean
+.PHONY: all demo test test-all bench bench-diagnose gfortran venv install clean distclean
 
 all: install
 
@@ -44,6 +44,9 @@ demo: install
 	@echo "demo written to out/"
 
 test: install
+	$(VPY) -m pytest -q -m "not slow" tests
+
+test-all: install
 	$(VPY) -m pytest -q tests
 
 bench: install

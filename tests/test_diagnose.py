@@ -21,6 +21,7 @@ def run(rec):
 EFFECTS = {"twin_branch": 5, "triggering": 5, "drive_modulation": 5, "static_ageing": 3, "load_variation": 2}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("effect", sorted(EFFECTS))
 def test_hidden_effect_is_named_with_gain(effect):
     """Six records with random parameters: the effect named with gain >= 0.3."""
@@ -31,6 +32,7 @@ def test_hidden_effect_is_named_with_gain(effect):
     assert good >= EFFECTS[effect]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seeds", [range(0, 5), range(5, 10)])
 def test_no_false_alarm_on_effect_free_data(seeds):
     """Effect-free records, half of them under a stepped drive with a v0
@@ -155,6 +157,7 @@ def _force_record(path, rec, load):
             fh.write("\t".join(f"{v:.7g}" for v in row) + "\n")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1])
 def test_force_records_with_a_normal_force(tmp_path, seed):
     """Force records (TAB, mN, N, um, the drive from the position column):
@@ -183,6 +186,7 @@ def _write(path, cols, sep=","):
             fh.write(sep.join(f"{v:.9g}" for v in row) + "\n")
 
 
+@pytest.mark.slow
 def test_records_as_labs_record_them(tmp_path):
     """Whitespace separated with units in the header, a 50 Hz hum, spikes,
     uneven sampling with gaps, no --fn: read, each repair said, fn read from
@@ -210,6 +214,7 @@ def test_records_as_labs_record_them(tmp_path):
     assert d.effect == "none", d.reason
 
 
+@pytest.mark.slow
 def test_a_reversing_drive_is_cut_into_strokes(tmp_path):
     """A reciprocating drive (the v0 column changes sign, dwells at the
     ends): every stroke turned forward and analysed; an effect-free stick-slip
@@ -264,6 +269,7 @@ def _reciprocating_coulomb(fs_of_pos, fn=20.0, v0=2.0, stroke=8.0, nstrokes=8, f
     return np.asarray(t), x, np.asarray(v)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("amp,named", [(0.25, True), (0.0, False)])
 def test_friction_along_the_track(tmp_path, amp, named):
     """Static friction that depends on the position along a reciprocating
@@ -277,6 +283,7 @@ def test_friction_along_the_track(tmp_path, amp, named):
     assert d["evidence"]["position_dependence"]["named"] is named, d["evidence"]["position_dependence"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("c,named", [(0.3, True), (-0.3, True), (0.0, False)])
 def test_a_normal_force_that_follows_the_force_as_written_on_a_reciprocating_rig(tmp_path, c, named):
     """A reciprocating force record whose normal force follows the friction
@@ -366,6 +373,7 @@ def test_fn_uncertainty_is_checked(tmp_path, capsys, extra, needle):
     assert needle in err and len(err.splitlines()) == 1 and not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow
 def test_the_twin_calibration_follows_the_stated_fn_uncertainty():
     """The replicates draw fn within the stated uncertainty: an fn known to
     1 % gives the twin statistic a narrower null than the default 5 % (the

@@ -10,6 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+pytestmark = pytest.mark.slow
+
 from lieng.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
