@@ -224,6 +224,28 @@ def test_csv_input_equals_deck(tmp_path, capsys):
         np.testing.assert_allclose(b[k], a[k], rtol=1e-12, atol=1e-14)
 
 
+def test_csv_input_takes_hz_as_diagnose_does(tmp_path, capsys):
+    """--fn / --fnv (Hz, diagnose's convention) give the same run as --omnh /
+    --omnv (rad/s, the listing's); both at once, or on a deck, one line."""
+    deck = lieng.read_deck(DEMO, program="trc")
+    t, x, xn = deck.calibrated()
+    p = tmp_path / "trace.csv"
+    p.write_text("t,x,xn\n" + "".join(f"{a:.17g},{b:.17g},{c:.17g}\n" for a, b, c in zip(t, x, xn)))
+    assert run_cli(["run", "trc", p, "-o", tmp_path / "a", "--no-plots", "-q", "--omnh", repr(deck.omnh),
+                    "--omnv", repr(deck.omnv)], capsys)[0] == 0
+    assert run_cli(["run", "trc", p, "-o", tmp_path / "b", "--no-plots", "-q", "--fn",
+                    repr(deck.omnh / (2 * math.pi)), "--fnv", repr(deck.omnv / (2 * math.pi))], capsys)[0] == 0
+    _, a = read_trc_csv(tmp_path / "a" / "trc.csv")
+    head, b = read_trc_csv(tmp_path / "b" / "trc.csv")
+    for k in head:
+        np.testing.assert_allclose(b[k], a[k], rtol=1e-9, atol=1e-12)
+    for extra, needle in ((["--fn", "3", "--omnh", "20"], "--fn and --omnh"), (["--fn", "-1"], "--fn -1")):
+        code, _, err = run_cli(["run", "trc", p, "-o", tmp_path / "c", "-q", *extra], capsys)
+        assert code == 2 and needle in err and len(err.strip().splitlines()) == 1, err
+    code, _, err = run_cli(["run", "trc", DEMO, "-o", tmp_path / "d", "-q", "--fn", "3"], capsys)
+    assert code == 2 and "card 2" in err
+
+
 def test_demo_run_writes_listing_csv_and_plots(tmp_path, capsys):
     code, out, err = run_cli(["run", "trc", DEMO, "-o", tmp_path / "o"], capsys)
     assert code == 0, err

@@ -33,7 +33,7 @@ def _reject_inapplicable(args) -> None:
     """One line for an option given to a program it does not apply to."""
     prog = args.program
     if prog != "trc":
-        for opt, val in (("--omnh", args.omnh), ("--omnv", args.omnv)):
+        for opt, val in (("--omnh", args.omnh), ("--omnv", args.omnv), ("--fn", args.fn), ("--fnv", args.fnv)):
             if val is not None:
                 raise LiengInputError(f"{opt}: applies to run trc only (a {prog} deck has no natural frequency)")
         if args.origin != "listing":
@@ -122,18 +122,26 @@ def _run_trc(args) -> int:
     from .trc import CSV_COLUMNS, read_csv, trc
 
     check_outdir(args.outdir, args.force)
+    # one convention with diagnose: --fn / --fnv in Hz, the listing's --omnh / --omnv in rad/s
+    for hz, rad in (("fn", "omnh"), ("fnv", "omnv")):
+        if getattr(args, hz) is not None:
+            if getattr(args, rad) is not None:
+                raise LiengInputError(f"--{hz} and --{rad}: give one of them (--{hz} in Hz, --{rad} in rad/s)")
+            if not (math.isfinite(getattr(args, hz)) and getattr(args, hz) > 0):
+                raise LiengInputError(f"--{hz} {getattr(args, hz)}: a natural frequency is a positive number (Hz)")
+            setattr(args, rad, 2 * math.pi * getattr(args, hz))
     if _is_table(args.deck):
         if args.omnh is None:
-            raise LiengInputError(f"{args.deck}: a CSV trace needs --omnh (natural frequency of the "
-                                  f"horizontal mode, rad/s)")
+            raise LiengInputError(f"{args.deck}: a CSV trace needs --fn (natural frequency of the "
+                                  f"horizontal mode, Hz) or --omnh (rad/s)")
         t, x, xn = read_csv(args.deck)
         if xn is not None and args.omnv is None:
-            raise LiengInputError(f"{args.deck}: the normal channel (column xn or y) needs --omnv (natural "
-                                  f"frequency of the normal mode, rad/s)")
+            raise LiengInputError(f"{args.deck}: the normal channel (column xn or y) needs --fnv (natural "
+                                  f"frequency of the normal mode, Hz) or --omnv (rad/s)")
         res = trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin, _where=str(args.deck))
     else:
         if args.omnh is not None or args.omnv is not None:
-            raise LiengInputError("--omnh/--omnv are for CSV input: a TRC deck gives them on card 2")
+            raise LiengInputError("--fn/--fnv/--omnh/--omnv are for CSV input: a TRC deck gives them on card 2")
         deck = read_deck(args.deck, program="trc")
         res = deck.run(origin=args.origin)
     listing = trc_listing(res)
@@ -392,6 +400,10 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
     r.add_argument("--omnh", type=float, help="trc, CSV input: natural frequency of the horizontal mode (rad/s)")
     r.add_argument("--omnv", type=float, help="trc, CSV input with xn: natural frequency of the normal mode (rad/s)")
+    r.add_argument("--fn", type=float, metavar="HZ", help="trc, CSV input: natural frequency of the horizontal mode "
+                   "(Hz, as in diagnose; instead of --omnh)")
+    r.add_argument("--fnv", type=float, metavar="HZ", help="trc, CSV input with xn: natural frequency of the normal "
+                   "mode (Hz; instead of --omnv)")
     r.add_argument("--origin", choices=("listing", "fit"), default="listing",
                    help="trc: EL/ELN as the listing finds them (default) or by a better-conditioned line fit")
     r.add_argument("--force", action="store_true", help=FORCE_HELP)
