@@ -209,3 +209,31 @@ def test_undefined_centre_interpolation_warns_and_completes(tmp_path, capsys):
     assert "FROM SLOPE(LLL).LT.SLOPE(MMM)" in listing and "UNDEF" in listing and "NaN" not in listing
     data = np.loadtxt(out / "trajectories.csv", delimiter=",", skiprows=1)
     assert np.all(np.isfinite(data))
+
+
+def _png_width(path):
+    """A PNG's width in pixels, from its IHDR chunk (plain bytes)."""
+    return int.from_bytes(path.read_bytes()[16:20], "big")
+
+
+def test_plots_in_the_format_and_resolution_asked_for(tmp_path, capsys):
+    """--format svg|pdf writes every plot in that format (and names them so on
+    the terminal); --dpi scales a PNG's pixels; the next run is PNG at 110
+    dpi again; a resolution out of range is one line."""
+    code, out, err = run_cli(["run", "lieng1", str(DEMO), "-o", str(tmp_path / "svg"), "--format", "svg"], capsys)
+    assert code == 0, err
+    svgs = sorted(p.name for p in (tmp_path / "svg").glob("*.svg"))
+    assert svgs == ["displacement_time.svg", "phase_plane.svg", "velocity_time.svg"]
+    assert not list((tmp_path / "svg").glob("*.png")) and all(n in out for n in svgs)
+    assert (tmp_path / "svg" / svgs[0]).read_text()[:200].lstrip().startswith("<?xml")
+    code, out, err = run_cli(["figures", "-o", str(tmp_path / "pdf"), "--only", "2.27", "--format", "pdf", "-q"],
+                             capsys)
+    assert code == 0, err
+    assert (tmp_path / "pdf" / "fig_2_27.pdf").read_bytes()[:5] == b"%PDF-"
+    for d, extra in (("a", []), ("b", ["--dpi", "220"])):
+        assert run_cli(["run", "lieng1", str(DEMO), "-o", str(tmp_path / d), *extra], capsys)[0] == 0
+    wa, wb = _png_width(tmp_path / "a" / "phase_plane.png"), _png_width(tmp_path / "b" / "phase_plane.png")
+    assert wb == pytest.approx(2 * wa, rel=0.02)
+    code, _, err = run_cli(["run", "lieng1", str(DEMO), "-o", str(tmp_path / "c"), "--dpi", "0"], capsys)
+    assert code == 2 and "--dpi 0" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "c").exists()

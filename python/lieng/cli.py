@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 from .errors import LiengInputError
+from .outputs import PLOT_FORMATS, plot_output
 
 __all__ = ["main"]
 
@@ -62,13 +63,11 @@ def _run_lieng1(args) -> int:
             for i in range(res.npts)
         )
         write_csv(tmp / "trajectories.csv", ["traj", "i", "x", "y", "t"], rows)
-        if not args.no_plots:
-            lieng1_plots(res, tmp)
+        plots = [] if args.no_plots else lieng1_plots(res, tmp)
     if not args.quiet:
         print(f"lieng1: {res.ntraj} trajectories x {res.npts} points; centre of symmetry "
               f"XMDL = {res.xmdl:.6g}, YMDL = VO = {res.ymdl:.6g}")
-        print(f"wrote {Path(args.outdir) / 'listing.txt'}, trajectories.csv"
-              + ("" if args.no_plots else ", phase_plane.png, displacement_time.png, velocity_time.png"))
+        print(f"wrote {Path(args.outdir) / 'listing.txt'}, trajectories.csv" + "".join(f", {p.name}" for p in plots))
     return 0
 
 
@@ -89,14 +88,13 @@ def _run_mlien(args) -> int:
                   ((1, i + 1, float(res.x[i]), float(res.y[i]), float(res.t[i])) for i in range(res.npts)))
         write_csv(tmp / "characteristic_last.csv", ["x", "y"],
                   ((float(a), float(b)) for a, b in zip(res.xchl_last, res.ychl_last)))
-        if not args.no_plots:
-            mlien_plots(res, tmp)
+        plots = [] if args.no_plots else mlien_plots(res, tmp)
     if not args.quiet:
         trig = "card 83" if deck.trigger is not None else "listing values"
         print(f"mlien: {res.npts} points from T = {res.t[0]:.6g} to {res.t[-1]:.6g}; VO(0) = {res.vo:.6g}, "
               f"PHI = {res.phi:.6g}; triggering {res.trigger} ({trig})")
         print(f"wrote {Path(args.outdir) / 'listing.txt'}, trajectories.csv, characteristic_last.csv"
-              + ("" if args.no_plots else ", phase_plane.png, displacement_time.png, velocity_time.png"))
+              + "".join(f", {p.name}" for p in plots))
     return 0
 
 
@@ -397,7 +395,8 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--lookup", choices=("listing", "bisect", "fast"), default="listing",
                    help="POINT step: the 1971 arithmetic (listing, default), bisection look-up with "
                         "bit-identical results (bisect), or no trig calls (fast, last bits differ)")
-    r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    r.add_argument("--no-plots", action="store_true", help="skip the plots")
+    _plot_options(r)
     r.add_argument("--omnh", type=float, help="trc, CSV input: natural frequency of the horizontal mode (rad/s)")
     r.add_argument("--omnv", type=float, help="trc, CSV input with xn: natural frequency of the normal mode (rad/s)")
     r.add_argument("--fn", type=float, metavar="HZ", help="trc, CSV input: natural frequency of the horizontal mode "
@@ -452,6 +451,7 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--force", action="store_true", help=FORCE_HELP)
     dg.add_argument("--json", action="store_true", help="print diagnosis.json")
     dg.add_argument("--no-plots", action="store_true", help="write diagnosis.json and report.md only")
+    _plot_options(dg)
     dg.add_argument("-q", "--quiet", action="store_true", help="print nothing (errors still go to stderr)")
     sy = sub.add_parser("synth", help="synthetic measured data with an effect hidden in it",
                         description="Write a synthetic stick-slip record (t,x[,y][,v0]) with realistic noise "
@@ -477,6 +477,7 @@ def build_parser() -> argparse.ArgumentParser:
     td.add_argument("-o", "--outdir", help="write twodof.json and plots here")
     td.add_argument("--force", action="store_true", help=FORCE_HELP)
     td.add_argument("--json", action="store_true", help="print JSON")
+    _plot_options(td)
     fg = sub.add_parser("figures", help="regenerate the thesis's theoretical figures (2.22-2.29, A9-1..A9-7)",
                         description="Regenerate the theoretical figures the thesis describes, each from a deck "
                                     "in cards/ (cards/figures/, cards/mlien_a9_7.dat), each PNG captioned with "
@@ -487,6 +488,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "decks installed with lieng)")
     fg.add_argument("--only", nargs="+", metavar="FIG", help="only these figures (e.g. 2.27 A9-7)")
     fg.add_argument("-q", "--quiet", action="store_true")
+    _plot_options(fg)
     return p
 
 
@@ -522,8 +524,16 @@ def main(argv=None) -> int:
     return code
 
 
+def _plot_options(p) -> None:
+    """--format and --dpi of a command that writes plots."""
+    p.add_argument("--format", choices=PLOT_FORMATS, default=None, help="the plots' file format (default png)")
+    p.add_argument("--dpi", type=float, default=None, help="the plots' resolution (dots per inch, default 110)")
+
+
 def _dispatch(parser, args) -> int:
     try:
+        if hasattr(args, "dpi"):
+            plot_output(args.format, args.dpi)
         if args.command == "run":
             _reject_inapplicable(args)
             return {"lieng1": _run_lieng1, "mlien": _run_mlien, "trc": _run_trc}[args.program](args)

@@ -60,13 +60,11 @@ def _fig(ncols=1):
 
 
 def _save(fig, path: Path, caption: str) -> Path:
-    import matplotlib.pyplot as plt
+    from .graf import save
 
     fig.text(0.01, 0.01, caption, fontsize=7.5, color="0.25", wrap=True)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
-    fig.savefig(path, metadata={"Title": caption.split(" (")[0], "Description": caption})
-    plt.close(fig)
-    return path
+    return save(fig, path, caption.split(" (")[0], caption)
 
 
 def _phase(ax, res, title, every=5):
@@ -168,7 +166,8 @@ def figures(outdir, cards=None, only=None) -> list[Path]:
     Returns
     -------
     list of Path
-        The PNGs written, ``fig_<name>.png``.
+        The plots written, ``fig_<name>.png`` (or the format chosen by
+        :func:`lieng.graf.plot_output`).
     """
     cards, outdir = (CARDS if cards is None else Path(cards)), Path(outdir)
     names = list(FIGURES) if only is None else list(only)

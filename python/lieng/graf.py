@@ -17,20 +17,38 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["graf", "lieng1_plots", "mlien_plots", "trc_plots"]
+from .outputs import plot_settings  # noqa: E402
+
+__all__ = ["graf", "lieng1_plots", "mlien_plots", "trc_plots", "save"]
+
+def save(fig, path, title: str = "", description: str = "") -> Path:
+    """Save and close a figure in the format and resolution the command chose
+    (:func:`lieng.outputs.plot_output`), with its title and caption in the
+    file's metadata; returns the path written."""
+    fmt, dpi = plot_settings()
+    p = Path(path).with_suffix("." + fmt)
+    meta = {}
+    if title:
+        meta["Title"] = title
+    if description:
+        meta["Subject" if fmt == "pdf" else "Description"] = description
+    fig.savefig(p, dpi=dpi, metadata=meta)
+    plt.close(fig)
+    return p
 
 
 def graf(curves: Sequence[tuple], path, *, xlabel: str, ylabel: str, title: str, caption: str = "",
          labels: Sequence[str] | None = None, styles: Sequence[dict] | None = None,
          equal: bool = False, xlim: tuple | None = None) -> Path:
-    """Draw curves as one GRAF call did and save a PNG.
+    """Draw curves as one GRAF call did and save the plot (a PNG unless
+    the command chose another format: :func:`lieng.outputs.plot_output`).
 
     Parameters
     ----------
     curves : sequence of (x, y)
         The curves, in GRAF's order.
     path : path-like
-        Where to write the PNG.
+        Where to write the plot (its suffix follows the format).
     xlabel, ylabel, title : str
         Axis labels (with units) and title.
     caption : str, optional
@@ -45,7 +63,7 @@ def graf(curves: Sequence[tuple], path, *, xlabel: str, ylabel: str, title: str,
     xlim : (float, float), optional
         Abscissa limits (points outside are still drawn, off the axes).
     """
-    p = Path(path)
+    p = Path(path).with_suffix("." + plot_settings()[0])
     fig, ax = plt.subplots(figsize=(8.2, 5.6), dpi=110)
     try:
         _draw(fig, ax, curves, p, xlabel, ylabel, title, caption, labels, styles, equal, xlim)
@@ -81,7 +99,7 @@ def _draw(fig, ax, curves, p, xlabel, ylabel, title, caption, labels, styles, eq
     if caption:
         fig.text(0.01, 0.005, caption, fontsize=7, color="0.3", ha="left", va="bottom")
     fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(p)
+    save(fig, p, title, caption)
 
 
 def lieng1_plots(result, outdir) -> list[Path]:
@@ -199,14 +217,13 @@ def trc_plots(result, outdir) -> list[Path]:
     return paths
 
 
-def finish(fig, ax, caption: str, path) -> None:
-    """Legend(s), a caption line under the plot, save as PNG and close:
-    the last steps of every analysis plot (diagnose, twodof).  ``ax`` may be
-    one axis or a sequence of axes."""
+def finish(fig, ax, caption: str, path) -> Path:
+    """Legend(s), a caption line under the plot, save (:func:`save`) and
+    close: the last steps of every analysis plot (diagnose, twodof).  ``ax``
+    may be one axis or a sequence of axes.  Returns the path written."""
     for a in (ax if isinstance(ax, (list, tuple, np.ndarray)) else [ax]):
         if a.get_legend_handles_labels()[0]:
             a.legend(fontsize=8)
     fig.text(0.01, 0.005, caption, fontsize=7, color="0.3")
     fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.savefig(path)
-    plt.close(fig)
+    return save(fig, path, description=caption)

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .baseline import slip_friction
-from ..outputs import dumps_json
+from ..outputs import dumps_json, plot_name
 from .evidence import CANDIDATES
 from .extend import METRIC
 
@@ -116,8 +116,9 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
                   ", ".join(f"{s:.3g}: {f:.4g}" for s, f in zip(b.sg, b.fg)), ""]
     if plots and d.plot and d.plot.get("pr") is not None:
         _plots(d, out, source)
-        written += list(PLOTS)
-        lines += ["Plots: " + ", ".join(PLOTS) + ".", ""]
+        names = [plot_name(n) for n in PLOTS]
+        written += names
+        lines += ["Plots: " + ", ".join(names) + ".", ""]
     (out / "report.md").write_text("\n".join(lines), encoding="utf-8")
     return written
 
