@@ -227,7 +227,8 @@ contains
    !> over the groups that hold it; L = 8 passes.  Y is smoothed in place as
    !> in the listing, X is not changed; XXX, YYY are copies of the result.
    subroutine belfit(n, x, y, xxx, yyy, status, where)
-      integer, intent(in) :: n                 !< N, number of points (>= 2M-1)
+      integer, intent(in) :: n                 !< N, number of points (>= 2M: at 2M-1 the listing divides the
+                                               !< last points' sums by one run too many, deviation D14)
       real(wp), intent(in) :: x(n)             !< X, the abscissae
       real(wp), intent(inout) :: y(n)          !< Y, smoothed in place
       real(wp), intent(out) :: xxx(n)          !< XXX = X
@@ -242,7 +243,7 @@ contains
       where = 0
       xxx = x
       yyy = y
-      if (n < 2 * m - 1) then
+      if (n < 2 * m) then
          status = trc_bad_size
          return
       end if

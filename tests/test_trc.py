@@ -160,6 +160,17 @@ def test_belfit_matches_windowed_least_squares(seed):
     np.testing.assert_allclose(got, ref, rtol=1e-8, atol=1e-9)
 
 
+def test_belfit_needs_two_runs_of_points():
+    """On 9 points (2M - 1) the listing's divisors for the last points are one
+    run too many (off by 64 on a quadratic): refused; on 10, exact (issue #18,
+    RESTORATION.md D14)."""
+    x = np.arange(9.0)
+    with pytest.raises(LiengInputError, match="at least 10"):
+        trc_mod.belfit(x, x ** 2)
+    x = np.arange(10.0)
+    np.testing.assert_allclose(trc_mod.belfit(x, x ** 2), x ** 2, atol=1e-10)
+
+
 def test_belfit_keeps_a_quadratic():
     x = np.linspace(-1, 2, 25)
     y = 1.5 - 0.3 * x + 0.8 * x**2

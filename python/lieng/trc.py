@@ -531,8 +531,9 @@ def belfit(x, y):
     y = np.ascontiguousarray(y, dtype=float)
     if x.shape != y.shape or x.ndim != 1:
         raise LiengInputError("belfit: x and y must be 1-D arrays of the same length")
-    if x.size < 9:
-        raise LiengInputError(f"belfit: {x.size} points: BELFIT needs at least 9")
+    if x.size < 10:
+        raise LiengInputError(f"belfit: {x.size} points: BELFIT needs at least 10 (two runs of 5; at 9 the "
+                              f"listing averages the last points over one run too many)")
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
         raise LiengInputError("belfit: x and y must be finite")
     ys, status, where = _core.core_belfit(x, y)
