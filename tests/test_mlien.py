@@ -184,3 +184,24 @@ def test_a9_7_decay_deck_oscillation_dies_out_at_the_damping_of_the_stable_origi
         dec = np.log(xs[late][:-1] / xs[late][1:])
         assert np.mean(dec) == pytest.approx(expect, rel=tol)
         assert xs[late][-1] < 0.4 * xs[pk[0]]           # it has died out to well under the stick-slip size
+
+
+def test_the_ychl_echo_is_edited_e20_2_as_mlien_lists_it(tmp_path, capsys):
+    """MLIEN's `33 FORMAT(5E20.2)` (App. 6, line 5207; LIENG-1's is F20.2):
+    the echo of the characteristic's velocities, edited here by hand as the
+    E edit does (0.dd E+ee, right-justified in 20)."""
+    def e20_2(v):
+        if v == 0:
+            return f"{'0.00E+00':>20}"
+        e = int(np.floor(np.log10(abs(v)))) + 1
+        m = round(abs(v) / 10.0 ** e, 2)
+        if m >= 1.0:
+            m, e = m / 10, e + 1
+        return f"{'-' if v < 0 else ''}{m:.2f}E{e:+03d}".rjust(20)
+
+    deck = CARDS / "mlien_a9_7.dat"
+    assert main(["run", "mlien", str(deck), "-o", str(tmp_path / "o"), "--no-plots", "-q"]) == 0
+    listing = (tmp_path / "o" / "listing.txt").read_text().splitlines()
+    ychl = read_deck(deck, program="mlien").ychl
+    want = "".join(e20_2(float(v)) for v in ychl[:5])
+    assert want in listing, want

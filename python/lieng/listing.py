@@ -60,6 +60,7 @@ FORMATS_MLIEN.update({
     ),
     1005: "(///I20,E20.8)",
     1010: "(6F10.3,I8)",
+    33: "(5E20.2)",            # MLIEN's YCHL echo (line 5207: `33 FORMA-F(5E20.2)`); LIENG-1's is F20.2
 })
 
 
