@@ -16,7 +16,7 @@
 !>   and POLFIT (least squares by orthogonal polynomials) as listed.
 !>
 !> Every reading of the OCR that had to be chosen is in RESTORATION.md
-!> (entries R1-R22).
+!> (entries R1-R29).
 module trc
    use iso_fortran_env, only: wp => real64
    implicit none
@@ -267,7 +267,7 @@ contains
          end do
          ! Loop 50: ID, the number of groups that hold point KL.  The listing
          ! counts down IFF for KL >= NN without initialising it; IFF = M+1 at
-         ! each pass makes ID = M, M-1, ..., 1 there (RESTORATION.md R14).
+         ! each pass makes ID = M, M-1, ..., 1 there (RESTORATION.md R13).
          iff = m + 1
          do kl = 1, n
             if (kl <= m) then
@@ -343,7 +343,7 @@ contains
    !> to the current residual; FITPOL accumulates C(j+1)*P(j) in powers of X.
    !> The listing's last pass builds one polynomial more than it needs and
    !> writes it one place past the arrays (H(5), F(5), ORTPOL(5) with KD = 4):
-   !> here the recurrence is skipped after the last degree (R19).
+   !> here the recurrence is skipped after the last degree (R18).
    pure subroutine polfit(number, kdeg, x, wt, resid, u, v, var, fitpol, f, ortpol, h, c)
       integer, intent(in) :: number            !< NUMBER of points
       integer, intent(in) :: kdeg              !< KDEG

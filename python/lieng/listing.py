@@ -171,7 +171,7 @@ _ENDS = [17, 25, 33, 41, 49, 57, 65, 73]
 
 #: TRC (App. 7).  The texts of the 90H head lines are the listing's; their
 #: spacing is lost in the OCR and is laid out on FORMAT 80's columns
-#: (RESTORATION.md R20).
+#: (RESTORATION.md R25).
 FORMATS_TRC = {
     70: "(" + "/".join([_h("1" + _STARS[1:], 90), _h(_text("STICK-SLIP CYCLE ANALYSIS"), 90),
                         _h(_STARS, 90), _h(_text("DATA"), 90)]) + ")",
