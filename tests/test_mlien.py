@@ -205,3 +205,17 @@ def test_the_ychl_echo_is_edited_e20_2_as_mlien_lists_it(tmp_path, capsys):
     ychl = read_deck(deck, program="mlien").ychl
     want = "".join(e20_2(float(v)) for v in ychl[:5])
     assert want in listing, want
+
+
+@pytest.mark.parametrize("ometri,lo,hi", [(30000.0, 200.0, 1e9), (3000.0, 0.0, 60.0)])
+def test_ometri_30000_or_3000(ometri, lo, hi):
+    """OMETRI = 30000 as printed, or 3000. (the OCR's `.` read as `0`),
+    with the listing's ATRI = 10, BTRI = 2 on the A9-7 deck: the first makes
+    the offsets random-walk hundreds of mm, the second stays on the figure's
+    scale (RESTORATION.md M6 records both; 30000 is kept)."""
+    import copy
+
+    deck = copy.deepcopy(read_deck(CARDS / "mlien_a9_7.dat", program="mlien"))
+    deck.trigger = (1.25, ometri, 10.0, 2.0)
+    x = np.asarray(deck.run().x)
+    assert lo <= np.max(np.abs(x)) < hi
