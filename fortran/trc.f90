@@ -16,7 +16,7 @@
 !>   and POLFIT (least squares by orthogonal polynomials) as listed.
 !>
 !> Every reading of the OCR that had to be chosen is in RESTORATION.md
-!> (entries R1-R29).
+!> (entries R1-R30).
 module trc
    use iso_fortran_env, only: wp => real64
    implicit none

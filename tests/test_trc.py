@@ -257,6 +257,21 @@ def test_csv_input_takes_hz_as_diagnose_does(tmp_path, capsys):
     assert code == 2 and "card 2" in err
 
 
+def test_head_formats_as_the_listing_writes_them(tmp_path, capsys):
+    """FORMAT 70 = (1H1, five 90H records), FORMAT 100 = (90H, 90H stars, /)
+    (App. 7 lines 5389-5394, 5403; RESTORATION.md R30): the page eject is a
+    character of its own before the first record's 90 (the stars one column to
+    the right of the other lines'), a fifth head record, and a record before
+    the stars under the table."""
+    assert run_cli(["run", "trc", DEMO, "-o", tmp_path / "o", "--no-plots", "-q"], capsys)[0] == 0
+    lines = (tmp_path / "o" / "listing.txt").read_text().splitlines()
+    stars = " " * 10 + "*" * 72
+    assert lines[0] == "1" + stars and lines[2] == stars and lines[4] == ""
+    k = next(i for i, ln in enumerate(lines) if i > 5 and ln.startswith(" " * 10 + "*     1"))
+    table_end = next(i for i in range(k, len(lines)) if not lines[i].startswith(" " * 10 + "*"))
+    assert lines[table_end] == "" and lines[table_end + 1] == stars
+
+
 def test_demo_run_writes_listing_csv_and_plots(tmp_path, capsys):
     code, out, err = run_cli(["run", "trc", DEMO, "-o", tmp_path / "o"], capsys)
     assert code == 0, err

@@ -173,8 +173,10 @@ _ENDS = [17, 25, 33, 41, 49, 57, 65, 73]
 #: spacing is lost in the OCR and is laid out on FORMAT 80's columns
 #: (RESTORATION.md R25).
 FORMATS_TRC = {
-    70: "(" + "/".join([_h("1" + _STARS[1:], 90), _h(_text("STICK-SLIP CYCLE ANALYSIS"), 90),
-                        _h(_STARS, 90), _h(_text("DATA"), 90)]) + ")",
+    # `70 FORMAT(1H1,90H****/90H STICK-SLIP CYCLE ANALYSIS/90H****/90H DATA/90H)`: the page eject is an
+    # item of its own before the first 90H record; the fifth 90H record's text is lost (blank here)
+    70: "(1H1," + "/".join([_h(_STARS, 90), _h(_text("STICK-SLIP CYCLE ANALYSIS"), 90),
+                            _h(_STARS, 90), _h(_text("DATA"), 90), _h("", 90)]) + ")",
     110: "(" + "/".join(_h(_text(t), 90) for t in (
         "SURFACES            STEEL ST 37.11 ON STEEL ST 37.11",
         "SURFACE ROUGHNESS   20 MICROIN CLA FOR BOTH SPECIMENS",
@@ -190,7 +192,8 @@ FORMATS_TRC = {
     ]) + ")",
     111: "(" + _h(_STARS, 90) + ")",
     80: "(11H          *,I6,2F8.4,F8.3,F8.4,F8.3,2F8.4,9H        *)",
-    100: "(" + _h(_STARS, 90) + "/)",
+    # `100 FORMAT(90H.../90H****/)`: a 90H record whose text is lost (blank here), then the stars
+    100: "(" + _h("", 90) + "/" + _h(_STARS, 90) + "/)",
     635: "(9F12.5)",
 }
 
