@@ -58,3 +58,19 @@ def test_fig_2_26_deck_shows_a_stable_node_not_a_focus():
     y = np.asarray(r.y) - r.ymdl
     crossings = [int(np.count_nonzero(np.diff(np.sign(yy[np.abs(yy) > 1e-9])) != 0)) for yy in y]
     assert max(crossings) <= 2, crossings
+
+
+def test_a_rising_part_steeper_than_the_falling_one_makes_the_slc_shrink_to_v_k():
+    """Issue #18, part 2 (tests/studies/slc_vs_v0.py): with the rising part
+    beyond the kinetic minimum steeper than the falling one (here 2.4 times),
+    the S.L.C. shrinks as v0 rises while the origin is still unstable and
+    vanishes where it turns stable, with no U.L.C. and no v_oc: a shrinking
+    S.L.C., but not the thesis's picture of one meeting a growing U.L.C."""
+    x, v = thesis_characteristic(v0=10.0, fs=10.0, fm=6.0, eps=0.5, um=20.0, c=0.5, vmax=300)
+    v0 = np.linspace(16.0, 20.0, 5)                     # (it grows up to v0 = 15, then shrinks)
+    s = cycles.sweep_v0(x, v, v0, progress=False)
+    S = np.array(s.stable_amplitude, float)
+    assert not any(s.origin_stable) and np.all(np.diff(S) < 0), S
+    assert all(a is None for a in s.unstable_amplitude)
+    after = cycles.sweep_v0(x, v, [22.0, 30.0], progress=False)
+    assert all(after.origin_stable) and after.stable_amplitude == [None, None] and after.v_oc is None
