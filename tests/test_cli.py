@@ -237,3 +237,12 @@ def test_plots_in_the_format_and_resolution_asked_for(tmp_path, capsys):
     code, _, err = run_cli(["run", "lieng1", str(DEMO), "-o", str(tmp_path / "c"), "--dpi", "0"], capsys)
     assert code == 2 and "--dpi 0" in err and len(err.strip().splitlines()) == 1
     assert not (tmp_path / "c").exists()
+
+
+def test_no_plots_imports_no_matplotlib(tmp_path):
+    """--no-plots does not pay for matplotlib's import (issue #19)."""
+    code = ("import sys; from lieng.cli import main; "
+            f"assert main(['run', 'lieng1', {str(DEMO)!r}, '-o', {str(tmp_path / 'o')!r}, '--no-plots', '-q']) == 0; "
+            "print('matplotlib' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"

@@ -44,9 +44,15 @@ def _reject_inapplicable(args) -> None:
                               f"POINT step)")
 
 
+def _plots(name, res, outdir) -> list:
+    """A program's plots (matplotlib is imported only when plots are asked for)."""
+    from . import graf
+
+    return getattr(graf, name)(res, outdir)
+
+
 def _run_lieng1(args) -> int:
     from .cards import read_deck
-    from .graf import lieng1_plots
     from .lieng1 import run_deck
     from .listing import lieng1_listing
     from .outputs import check_outdir, staged_outdir, write_csv, write_lines
@@ -63,7 +69,7 @@ def _run_lieng1(args) -> int:
             for i in range(res.npts)
         )
         write_csv(tmp / "trajectories.csv", ["traj", "i", "x", "y", "t"], rows)
-        plots = [] if args.no_plots else lieng1_plots(res, tmp)
+        plots = [] if args.no_plots else _plots("lieng1_plots", res, tmp)
     if not args.quiet:
         print(f"lieng1: {res.ntraj} trajectories x {res.npts} points; centre of symmetry "
               f"XMDL = {res.xmdl:.6g}, YMDL = VO = {res.ymdl:.6g}")
@@ -73,7 +79,6 @@ def _run_lieng1(args) -> int:
 
 def _run_mlien(args) -> int:
     from .cards import read_deck
-    from .graf import mlien_plots
     from .listing import mlien_listing
     from .mlien import run_deck
     from .outputs import check_outdir, staged_outdir, write_csv, write_lines
@@ -88,7 +93,7 @@ def _run_mlien(args) -> int:
                   ((1, i + 1, float(res.x[i]), float(res.y[i]), float(res.t[i])) for i in range(res.npts)))
         write_csv(tmp / "characteristic_last.csv", ["x", "y"],
                   ((float(a), float(b)) for a, b in zip(res.xchl_last, res.ychl_last)))
-        plots = [] if args.no_plots else mlien_plots(res, tmp)
+        plots = [] if args.no_plots else _plots("mlien_plots", res, tmp)
     if not args.quiet:
         trig = "card 83" if deck.trigger is not None else "listing values"
         print(f"mlien: {res.npts} points from T = {res.t[0]:.6g} to {res.t[-1]:.6g}; VO(0) = {res.vo:.6g}, "
@@ -114,7 +119,6 @@ def _is_table(path) -> bool:
 
 def _run_trc(args) -> int:
     from .cards import read_deck
-    from .graf import trc_plots
     from .listing import trc_listing
     from .outputs import check_outdir, staged_outdir, write_csv, write_lines
     from .trc import CSV_COLUMNS, read_csv, trc
@@ -149,7 +153,7 @@ def _run_trc(args) -> int:
         write_csv(tmp / "trc.csv", list(CSV_COLUMNS),
                   ([int(cols["i"][k])] + [_cell(cols[c][k]) for c in CSV_COLUMNS[1:]] for k in range(res.nn)))
         if not args.no_plots:
-            trc_plots(res, tmp)
+            _plots("trc_plots", res, tmp)
     if not args.quiet:
         eln = "" if not res.has_normal else f", ELN = {res.eln:.6g} mm"
         print(f"trc: {res.nn} points over {res.t[-1] - res.t[0]:.6g} s; origin ({res.origin}) EL = {res.el:.6g} mm"
