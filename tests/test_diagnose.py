@@ -178,6 +178,22 @@ def test_force_records_with_a_normal_force(tmp_path, seed):
     assert json.loads((tmp_path / "b" / "diagnosis.json").read_text())["effect"] == "none"
 
 
+@pytest.mark.slow
+def test_a_twin_branch_is_not_explained_away_by_a_load_that_does_not_drive_the_friction(tmp_path):
+    """A twin-branch record whose normal force follows the motion (a contact
+    that tilts) while the friction does not follow it: both are named (the
+    normal force does vary), and the twin branch stays first: the load's
+    extension does not account for the slips (issue #13: a twin and a load
+    both named are each tested against the other's extension)."""
+    tw = synthesize("twin_branch", 0)
+    p = tmp_path / "tw.txt"
+    _force_record(p, tw, 1 + 0.3 * (tw.x - tw.x.mean()) / np.ptp(tw.x))
+    assert main(["diagnose", str(p), "--stiffness", "200", "--fn", repr(tw.fn), "-o", str(tmp_path / "o"), "-q",
+                 "--no-plots"]) == 0
+    d = json.loads((tmp_path / "o" / "diagnosis.json").read_text())
+    assert d["effect"] == "twin_branch" and d["evidence"]["twin_branch"]["named"], d["reason"]
+
+
 def _write(path, cols, sep=","):
     names = list(cols)
     with open(path, "w") as fh:
