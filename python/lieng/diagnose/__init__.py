@@ -224,9 +224,9 @@ def _rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_fo
         rows[k]["named"] = False
         named.remove(k)
         effects[:] = [e for e in effects if e["effect"] != k]
-        notes.append(f"{k} is not named: the fitted {other} extension gives records like this one in it "
-                     f"({k} statistic {st[k]:.3g} against {g['null_mean']:.3g} +- {g['null_sd']:.2g} in "
-                     f"its {g['replicates']} replicates, p = {g['p']:.2g})")
+        notes.append(f"{k} is not named: replicates of the fitted {other} extension give a {k} statistic like "
+                     f"the record's ({st[k]:.3g} against {g['null_mean']:.3g} +- {g['null_sd']:.2g} in "
+                     f"{g['replicates']} replicates, p = {g['p']:.2g})")
 
 
 def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN_UNCERTAINTY,
@@ -325,7 +325,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         if fcal is not None and abs(fcal / fn - 1.0) > FN_CHECK:
             warnings.append(f"the slips say fn = {fcal:.4g} Hz (the baseline's slips last as long as the record's "
                             f"there), {100 * (fcal / fn - 1):+.0f} % from --fn {fn:g}: check --fn (the slip-shape "
-                            f"evidence assumes it within {100 * u_fn:.0g} %)")
+                            f"evidence assumes it within {100 * u_fn:g} %)")
     # the slip-shape evidence (twin, load) reads the slips as arcs of a free
     # oscillation at fn: withheld when they are not (heavily damped or
     # rate-dependent slips, or an fn far off)
