@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 from .errors import LiengInputError
-from .outputs import PLOT_FORMATS, plot_output
+from .outputs import PLOT_DEFAULT, PLOT_FORMATS, plot_output
 
 __all__ = ["main"]
 
@@ -530,8 +530,10 @@ def main(argv=None) -> int:
 
 def _plot_options(p) -> None:
     """--format and --dpi of a command that writes plots."""
-    p.add_argument("--format", choices=PLOT_FORMATS, default=None, help="the plots' file format (default png)")
-    p.add_argument("--dpi", type=float, default=None, help="the plots' resolution (dots per inch, default 110)")
+    p.add_argument("--format", choices=PLOT_FORMATS, default=None,
+                   help=f"the plots' file format (default {PLOT_DEFAULT['format']})")
+    p.add_argument("--dpi", type=float, default=None,
+                   help=f"the plots' resolution (dots per inch, default {PLOT_DEFAULT['dpi']:g})")
 
 
 def _dispatch(parser, args) -> int:

@@ -167,7 +167,7 @@ def figures(outdir, cards=None, only=None) -> list[Path]:
     -------
     list of Path
         The plots written, ``fig_<name>.png`` (or the format chosen by
-        :func:`lieng.graf.plot_output`).
+        :func:`lieng.outputs.plot_output`).
     """
     cards, outdir = (CARDS if cards is None else Path(cards)), Path(outdir)
     names = list(FIGURES) if only is None else list(only)

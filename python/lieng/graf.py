@@ -21,6 +21,7 @@ from .outputs import plot_settings  # noqa: E402
 
 __all__ = ["graf", "lieng1_plots", "mlien_plots", "trc_plots", "save"]
 
+
 def save(fig, path, title: str = "", description: str = "") -> Path:
     """Save and close a figure in the format and resolution the command chose
     (:func:`lieng.outputs.plot_output`), with its title and caption in the

@@ -39,8 +39,9 @@ from typing import Iterable, Sequence
 
 from .errors import LiengInputError
 
-__all__ = ["PLOT_FORMATS", "plot_output", "plot_settings", "plot_name", "MANIFEST", "check_outdir", "check_outfile", "staged_outdir", "write_csv", "write_lines",
-           "dumps_json", "finite_json", "all_finite", "replace_file"]
+__all__ = ["MANIFEST", "check_outdir", "check_outfile", "staged_outdir", "write_csv", "write_lines",
+           "dumps_json", "finite_json", "all_finite", "replace_file",
+           "PLOT_FORMATS", "PLOT_DEFAULT", "plot_output", "plot_settings", "plot_name"]
 
 #: the list of files a command wrote into its output directory
 MANIFEST = ".lieng-outputs"
@@ -306,20 +307,22 @@ def dumps_json(obj, **kw) -> str:
 
 #: the file formats plots are written in
 PLOT_FORMATS = ("png", "svg", "pdf")
-#: the format and resolution (dots per inch) of the plots written next
-_PLOT = {"format": "png", "dpi": 110.0}
+#: the plots' format and resolution (dots per inch) when a command sets none
+PLOT_DEFAULT = {"format": "png", "dpi": 110.0}
+#: the format and resolution of the plots written next
+_PLOT = dict(PLOT_DEFAULT)
 
 
 def plot_output(fmt: str | None = None, dpi: float | None = None) -> None:
     """Set the format (png, svg or pdf; default png) and resolution (dpi,
     30-1200; default 110) of every plot written after (the commands'
     --format and --dpi)."""
-    fmt = "png" if fmt is None else fmt
+    fmt = PLOT_DEFAULT["format"] if fmt is None else fmt
     if fmt not in PLOT_FORMATS:
         raise LiengInputError(f"--format {fmt}: choose from {', '.join(PLOT_FORMATS)}")
     if dpi is not None and not (math.isfinite(dpi) and 30 <= dpi <= 1200):
         raise LiengInputError(f"--dpi {dpi:g}: a resolution between 30 and 1200 dots per inch")
-    _PLOT.update(format=fmt, dpi=110.0 if dpi is None else float(dpi))
+    _PLOT.update(format=fmt, dpi=PLOT_DEFAULT["dpi"] if dpi is None else float(dpi))
 
 
 def plot_settings() -> tuple:

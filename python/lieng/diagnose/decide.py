@@ -17,8 +17,9 @@ p from the normal distribution (one-sided for effects with a direction).
 The family-wise false-alarm rate over the candidates is held at ALPHA by
 Holm's step-down procedure (a load that follows the motion and a twin
 branch both named: each is tested again against replicates of the other's
-fitted extension, at the level Holm gave it; see ``lieng.diagnose._rivals``).  An effect is **named** when it is significant
-and its size S - m0 is at least the relevance margin stated in
+fitted extension, at the level Holm gave it; see ``lieng.diagnose._rivals``).
+An effect is **named** when it is significant and its size S - m0 is at
+least the relevance margin stated in
 :data:`.evidence.MARGIN` (and at most the bound its own model allows,
 :data:`.evidence.UPPER`).
 """

@@ -243,13 +243,13 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
         coef = np.linalg.lstsq(A[m], F[m], rcond=None)[0]
         return float(coef[5] / np.std(yl) * span)
 
-    v = est(np.ones(units.size, bool))
     if not y_is_force:
-        return v, _jackknife(est, units.size), span
+        return est(np.ones(units.size, bool)), _jackknife(est, units.size), span
     # a normal force: its relative change locked to the motion is the load
     # variation itself, whichever way the friction follows it (the slips'
     # shape cannot tell a load locked to x from a stiffer spring when fn is
-    # read off the slips, so the regression above may have either sign)
+    # read off the slips, so the regression a reading needs may have either
+    # sign)
     mean = abs(float(np.mean(y)))
     if not mean > 0:
         return 0.0, math.inf, span

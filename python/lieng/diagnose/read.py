@@ -293,10 +293,7 @@ def _regularise(path, t, chans, notes) -> dict:
         # points becomes two raised samples, no longer isolated
         for k in ("x", "y"):
             if chans.get(k) is not None:
-                chans[k], nsp = despike(chans[k])
-                if nsp:
-                    notes.append(f"{nsp} isolated spikes in {k} replaced by their neighbours' mean (before "
-                                 f"resampling)")
+                chans[k] = _despiked(chans[k], k, notes, " (before resampling)")
         gaps = int(np.count_nonzero(d > 1.5 * dt))
         tu = t[0] + dt * np.arange(int(math.floor(span / dt + 1e-9)) + 1)
         out = {"t": tu}
@@ -339,6 +336,14 @@ def despike(x, k: float = 8.0):
         y[idx] = 0.5 * (y[idx - 1] + y[idx + 1])
         total += idx.size
     return y, total
+
+
+def _despiked(x, name: str, notes: list, when: str = ""):
+    """:func:`despike` with a note of the spikes replaced in channel ``name``."""
+    y, nsp = despike(x)
+    if nsp:
+        notes.append(f"{nsp} isolated spikes in {name} replaced by their neighbours' mean{when}")
+    return y
 
 
 def _hum_lines(x, dt):
@@ -386,9 +391,7 @@ def condition(rec: Record) -> None:
         v = getattr(rec, name)
         if v is None:
             continue
-        v, nsp = despike(v)
-        if nsp:
-            rec.notes.append(f"{nsp} isolated spikes in {name} replaced by their neighbours' mean")
+        v = _despiked(v, name, rec.notes)
         tt = rec.t - rec.t[0]
         for ff, amp, a, b in _hum_lines(v, rec.dt):
             v = v - a * np.cos(2 * math.pi * ff * tt) - b * np.sin(2 * math.pi * ff * tt)
