@@ -39,7 +39,7 @@ from .. import _core
 from ..errors import LiengInputError
 from .segment import Cycles, Prepared, slip_seconds, stick_ratios
 
-__all__ = ["Params", "simulate", "run_slice", "fit_baseline", "slip_friction", "model_y", "calibrate_fn"]
+__all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "model_y", "calibrate_fn"]
 
 #: quantile bins of the sliding velocity for the characteristic's table
 NBINS = 10
@@ -283,13 +283,32 @@ def pr_like(pr: Prepared, x, y=None) -> Prepared:
 RESOLVED = 20
 
 
-def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6) -> Params:
-    """The baseline (module docstring), identified on ``pr`` with its cycles ``c``."""
+def identify(pr: Prepared, c: Cycles, fn: float, load=None, sel=None) -> tuple:
+    """The characteristic and the static limit read off the record: (sg, fg,
+    fs).  phi by the reverse construction pooled over the slips (module
+    docstring), FS the median peak; with ``load`` (the load factor N/N0 at
+    every sample: a measured or modelled load) both are read per unit load,
+    F / load, as the slider core applies them (friction = load x phi).
+    ``sel``: a mask over the cycles whose slips and peaks are read."""
     idx, s, F, br, sid = slip_friction(pr, c, fn)
+    pk = c.peak_i
+    if sel is not None:
+        keep = np.isin(sid, np.flatnonzero(sel))
+        idx, s, F = idx[keep], s[keep], F[keep]
+        pk = pk[sel]
+    peaks = pr.x[pk]
+    if load is not None:
+        F = F / load[idx]
+        peaks = peaks / load[pk]
     sg, fg = characteristic(s, F)
     if 1.0 / (fn * pr.dt) < RESOLVED:
         sg, fg = np.array([0.0]), np.array([float(np.median(F)) if F.size else float(np.median(pr.x))])
-    fs = float(np.median(pr.x[c.peak_i]))
+    return sg, fg, float(np.median(peaks))
+
+
+def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6) -> Params:
+    """The baseline (module docstring), identified on ``pr`` with its cycles ``c``."""
+    sg, fg, fs = identify(pr, c, fn)
     c0, c1 = stick_creep(pr, c)
     p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1), iters)
     if (c0 or c1) and _cycles_of(pr, p, fn) < min(3, c.n):

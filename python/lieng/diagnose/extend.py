@@ -37,7 +37,7 @@ import math
 import numpy as np
 
 from ..errors import LiengInputError
-from .baseline import Params, model_y, pr_like, run_slice, simulate, slip_friction
+from .baseline import Params, identify, model_y, pr_like, run_slice, simulate, slip_friction
 from .evidence import _stick_series, drive_scan, level_fit, lowpass, stick_times
 from .segment import Cycles, Prepared, find_cycles, first_below
 
@@ -239,6 +239,16 @@ def _line_fit(sig, t, f):
     return float(math.hypot(c[2], c[3])), float(math.atan2(c[3], c[2]))
 
 
+def _per_load(base: Params, pr: Prepared, c: Cycles, fn: float, load, sel, **kw) -> list:
+    """The baseline with a load term ``kw``: its static limit read per unit
+    load, with the baseline's characteristic and with the characteristic
+    identified again per unit load (:func:`.baseline.identify` on the
+    training cycles ``sel``; the baseline's carries the load's mean course
+    along the slips, the other the noise of F / load): two candidates."""
+    sg, fg, fs = identify(pr, c, fn, load=load, sel=sel)
+    return [base.copy(fs=fs, **kw), base.copy(sg=sg, fg=np.minimum(fg, fs), fs=fs, **kw)]
+
+
 def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st: dict, aux: dict,
                tsplit: float) -> list:
     """Extended models for ``effect`` (the baseline plus one term), from the
@@ -275,16 +285,18 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 kf = 1.0 / abs(float(np.mean(ylow)))      # Amontons: the load factor is N / mean N
             for sc in (0.7, 1.0, 1.4):
                 k = sc * kf
-                ld = 1.0 + k * (ylow[c.peak_i[ctr_sel]] - np.mean(ylow))
-                if np.all(ld > 0.05):
-                    out.append(lvl(base.copy(load_k=k, fs=float(np.median(pr.x[c.peak_i[ctr_sel]] / ld))),
-                                   ylow=ylow))
+                # the characteristic and the static limit read again per unit load (F / load): the
+                # baseline's carry the load's mean course along the slips
+                ld = 1.0 + k * (ylow - np.mean(ylow))
+                if np.all(ld[c.peak_i[ctr_sel]] > 0.05):
+                    out += [lvl(q, ylow=ylow) for q in _per_load(base, pr, c, fn, np.maximum(ld, 0.05), ctr_sel,
+                                                                 load_k=k)]
                 if base.y_c[1]:
                     kx, xref = k * base.y_c[1], float(np.mean(pr.x))
-                    ld = 1.0 + kx * (pr.x[c.peak_i[ctr_sel]] - xref)
-                    if np.all(ld > 0.05):
-                        out.append(lvl(base.copy(load_kx=kx, load_xref=xref,
-                                                 fs=float(np.median(pr.x[c.peak_i[ctr_sel]] / ld)))))
+                    ld = 1.0 + kx * (pr.x - xref)
+                    if np.all(ld[c.peak_i[ctr_sel]] > 0.05):
+                        out += [lvl(q) for q in _per_load(base, pr, c, fn, np.maximum(ld, 0.05), ctr_sel,
+                                                          load_kx=kx, load_xref=xref)]
     elif effect == "static_ageing":
         k, ts, pk = stick_times(pr, c)
         # the peak's growth from all sticks and from those between two slips alone (a hold in which x
