@@ -39,12 +39,43 @@ class Table:
         self.columns = columns
         #: the file line of each row (1-based), for messages
         self.lines = lines
+        #: rows dropped for a missing value (``read_table(..., missing="drop")``)
+        self.dropped = 0
 
     def __len__(self):
         return len(self.lines)
 
 
 _UNIT = re.compile(r"^\s*(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$")
+#: ``time/s``, ``force / mN``, ``v0/(mm/s)``: the quantity over its unit (ISO 80000)
+_SLASH = re.compile(r"^\s*([^/]*?[A-Za-z][^/]*?)\s*/\s*\(?\s*([^()]+?)\s*\)?\s*$")
+#: lines before the header or between rows that are comments, not data
+_COMMENT = ("#", "%", "//")
+
+
+def _unquote(cell: str) -> str:
+    c = cell.strip()
+    if len(c) >= 2 and c[0] == c[-1] and c[0] in "\"'":
+        c = c[1:-1].strip()
+    return c
+
+
+def _name_unit(cell: str) -> tuple:
+    """A header cell's name and unit: ``Time [s]``, ``F (mN)``, ``time/s``."""
+    m = _UNIT.match(cell)
+    if m:
+        return m.group(1), m.group(2)
+    m = _SLASH.match(cell)
+    if m:
+        return m.group(1), m.group(2)
+    return cell, ""
+
+
+def _number(cell: str, decimal_comma: bool) -> float:
+    c = cell.strip()
+    if decimal_comma:
+        c = c.replace(",", ".")
+    return float(c)
 
 
 def _split_header(line: str, first_row: str | None = None):
@@ -82,16 +113,36 @@ def _split_header(line: str, first_row: str | None = None):
     return None, cells
 
 
-def read_table(path, expect: str) -> Table:
+#: the cells a logger writes for a sample it missed (read as missing with ``missing="drop"``)
+MISSING = ("", "nan", "-nan", "na", "n/a", "null", "none", "-", "--")
+#: with ``missing="drop"``, at most this fraction of the rows may miss a value
+MAX_MISSING = 0.10
+
+
+def _is_comment(row: str) -> bool:
+    return row.lstrip().startswith(_COMMENT)
+
+
+def read_table(path, expect: str, missing: str = "error") -> Table:
     """Read a delimited numeric table with a header row.
 
     Parameters
     ----------
     path : str or path-like
         The file: comma, semicolon, TAB or whitespace separated (the header
-        row decides); blank lines are skipped.
+        row decides); blank lines and comment lines (``#``, ``%``, ``//``,
+        ``;``) are skipped, also before the header.  A header cell may be
+        quoted and carry its unit as ``name [unit]``, ``name (unit)`` or
+        ``name/unit``; a row of units alone under the header is read as
+        the units.  With a semicolon, TAB or whitespace separator a decimal
+        comma is read (``0,125``).
     expect : str
         What the header should look like, for the messages.
+    missing : {"error", "drop"}
+        A row with a missing value (an empty cell, ``NaN``, ``NA``, ...):
+        an error naming it, or dropped (the rows kept are counted in
+        :attr:`Table.dropped`; more than :data:`MAX_MISSING` of the rows
+        is an error all the same).
 
     Returns
     -------
@@ -104,49 +155,83 @@ def read_table(path, expect: str) -> Table:
         non-finite cell (naming its line and column).
     """
     text = read_text(path, what="table")
+    if text.startswith("\ufeff"):
+        text = text[1:]
     rows = split_lines(text)
     if len(rows) > MAX_ROWS + 1 and sum(1 for r in rows if r.strip()) > MAX_ROWS + 1:
         raise LiengInputError(f"{path}: more than {MAX_ROWS} rows: split the record (lieng reads at most "
                               f"{MAX_ROWS} rows)")
-    k0 = next((k for k, r in enumerate(rows) if r.strip()), None)
+    k0 = next((k for k, r in enumerate(rows) if r.strip() and not _is_comment(r)), None)
     if k0 is None:
         raise LiengInputError(f"{path}: empty file: expected a header {expect}")
-    first = next((r for r in rows[k0 + 1:] if r.strip()), None)
+    first = next((r for r in rows[k0 + 1:] if r.strip() and not _is_comment(r)), None)
     sep, head = _split_header(rows[k0], first)
+    head = [_unquote(h) for h in head]
+    while len(head) > 1 and not head[-1]:
+        head.pop()                        # a separator at the end of every line
     names, units = [], []
     for h in head:
-        m = _UNIT.match(h)
-        names.append(m.group(1) if m else h)
-        units.append(m.group(2) if m else "")
+        nm, un = _name_unit(h)
+        names.append(nm)
+        units.append(un)
     ncol = len(names)
+    comma = sep != ","
+    start = k0 + 1
+    if first is not None:
+        # a row of units alone under the header ("s,N,N"): no cell of it is a number
+        k1 = rows.index(first, k0 + 1)
+        cells = [_unquote(c) for c in (first.split(sep) if sep else first.split())][:ncol]
+        unitlike = len(cells) == ncol and all(c and len(c) <= 12 for c in cells)
+        if unitlike:
+            try:
+                [_number(c, comma) for c in cells]
+            except ValueError:
+                if not any(units):
+                    units = [c.strip("[]() ") for c in cells]
+                    start = k1 + 1
     data, lines = [], []
-    for r in range(k0 + 1, len(rows)):
+    dropped = 0
+    for r in range(start, len(rows)):
         row = rows[r]
-        if not row.strip():
+        if not row.strip() or _is_comment(row):
             continue
         if len(row) > MAX_LINE:
             raise LiengInputError(f"{path}: line {r + 1}: longer than {MAX_LINE} characters: not a table row")
         cells = row.split(sep) if sep else row.split()
-        if len(cells) < ncol:
+        if len(cells) < ncol and not (missing == "drop" and sep):
             raise LiengInputError(f"{path}: line {r + 1}: {len(cells)} cells where the header has {ncol}")
         vals = []
         for c in range(ncol):
-            cell = cells[c].strip()
+            cell = _unquote(cells[c]) if c < len(cells) else ""
+            if missing == "drop" and cell.lower() in MISSING:
+                vals = None
+                break
             try:
-                val = float(cell)
+                val = _number(cell, comma)
             except ValueError:
                 raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell[:40]!r} is not a "
                                       f"number") from None
             if not math.isfinite(val):
+                if missing == "drop" and math.isnan(val):
+                    vals = None
+                    break
                 raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is not a finite number")
             if abs(val) > MAX_ABS:
                 raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is out of range for a "
                                       f"measurement (|value| > {MAX_ABS:g})")
             vals.append(val)
+        if vals is None:
+            dropped += 1
+            continue
         data.append(vals)
         lines.append(r + 1)
+    if dropped and dropped > MAX_MISSING * (dropped + len(data)):
+        raise LiengInputError(f"{path}: {dropped} of {dropped + len(data)} rows miss a value (more than "
+                              f"{100 * MAX_MISSING:g} %): not a record to resample")
     arr = np.asarray(data, float).reshape(len(data), ncol)
-    return Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
+    tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
+    tab.dropped = dropped
+    return tab
 
 
 def read_columns(path, required: Sequence[str], optional: Sequence[str], expect: str) -> dict:

@@ -44,7 +44,7 @@ _NAMES = {
     "x": ("x", "disp", "displacement", "extension", "spring"),
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity"),
-    "F": ("f", "friction", "force", "friction_force", "ft", "tangential"),
+    "F": ("f", "friction", "force", "friction_force", "ft", "fx", "tangential", "tangential_force", "lateral_force"),
     "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive"),
 }
@@ -169,10 +169,16 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
     LiengInputError
         Naming the line and column, or the option, of bad input.
     """
-    tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness")
+    tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
+                     missing="drop")
     cols, units = {}, {}
     for name, unit in zip(tab.names, tab.units):
         role = _role(name)
+        if role is None and not unit and "_" in name:
+            # "time_s", "force_mN": the unit as the name's last part
+            stem, suffix = name.rsplit("_", 1)
+            if any(suffix.lower() in tab_ for tab_ in (_LENGTH, _VELOCITY, _TIME, _FORCE)) and suffix:
+                role, unit = _role(stem), suffix
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
     if "t" not in cols:
@@ -192,6 +198,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
     notes = []
+    if tab.dropped:
+        notes.append(f"{tab.dropped} rows with a missing value (empty, NaN) left out: the record is resampled "
+                     f"across them")
     if "x" in cols:
         x = cols["x"][1] * _scale(path, cols["x"][0], units["x"], _LENGTH, "displacement")
         if stiffness is not None:

@@ -1,0 +1,79 @@
+"""Tables as labs write them: the variants of header, units, separators and
+missing samples that loggers and spreadsheets produce are read to the same
+numbers as a plain ``t [s],F [N]`` file (``lieng.table.read_table`` and
+``lieng.diagnose.read_record``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from lieng.diagnose import read_record
+from lieng.errors import LiengInputError
+
+T = np.round(np.arange(200) * 1e-3, 6)
+F = np.round(0.5 + 0.1 * np.sin(2 * np.pi * 7.0 * T) + 0.02 * (np.arange(200) % 17) / 17, 6)
+K = 2000.0  # N/m
+
+
+def _rows(fmt, n=200):
+    return "".join(fmt(T[i], F[i]) for i in range(n))
+
+
+PLAIN = "t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b}\n")
+VARIANTS = {
+    "parentheses": "Time (s),Friction force (N)\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "quantity/unit (ISO 80000)": "time/s,force/N\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "unit as the name's suffix": "time_s,force_N\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "unit row under the header": "time,force\ns,N\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "comment lines before the header": "# rig A\n% operator B\ntime [s],force [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "quoted header": '"time [s]","force [N]"\n' + _rows(lambda a, b: f"{a},{b}\n"),
+    "decimal comma, semicolons": "time [s];force [N]\n" + _rows(lambda a, b: f"{a};{b}\n".replace(".", ",")),
+    "decimal comma, TABs": "time [s]\tforce [N]\n" + _rows(lambda a, b: f"{a}\t{b}\n".replace(".", ",")),
+    "BOM and CRLF": "\ufefft [s],F [N]\r\n" + _rows(lambda a, b: f"{a},{b}\r\n"),
+    "a separator at the end of each line": "t [s],F [N],\n" + _rows(lambda a, b: f"{a},{b},\n"),
+    "Fx (tribometer axes)": "Time [s],Fx [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "time in ms": "t [ms],F [mN]\n" + _rows(lambda a, b: f"{1000 * a:.3f},{1000 * b:.4f}\n"),
+}
+
+
+def _read(tmp_path, name, text):
+    p = tmp_path / name
+    p.write_bytes(text.encode("utf-8"))
+    return read_record(p, v0=1.0, stiffness=K)
+
+
+@pytest.mark.parametrize("what", sorted(VARIANTS))
+def test_a_variant_reads_as_the_plain_file(tmp_path, what):
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    r = _read(tmp_path, "variant.csv", VARIANTS[what])
+    assert r.t.size == ref.t.size
+    np.testing.assert_allclose(r.t, ref.t, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-9, atol=1e-12)
+    assert r.x[0] == pytest.approx(F[0] / K * 1e3)
+
+
+@pytest.mark.parametrize("cell", ["NaN", "", "nan", "NA"])
+def test_a_missing_sample_is_left_out_and_said(tmp_path, cell):
+    rows = PLAIN.splitlines(keepends=True)
+    rows[51] = f"{T[50]},{cell}\n"
+    r = _read(tmp_path, "gap.csv", "".join(rows))
+    assert r.t.size == 200 and any("missing value" in n and "resampled" in n for n in r.notes)
+    assert np.all(np.isfinite(r.x))
+    # the missing sample is interpolated from its neighbours
+    assert r.x[50] == pytest.approx(0.5 * (F[49] + F[51]) / K * 1e3, rel=1e-6)
+
+
+def test_a_record_that_is_mostly_missing_is_refused(tmp_path):
+    rows = PLAIN.splitlines(keepends=True)
+    for i in range(1, 60):
+        rows[i] = f"{T[i - 1]},NaN\n"
+    with pytest.raises(LiengInputError, match="rows miss a value"):
+        _read(tmp_path, "holes.csv", "".join(rows))
+
+
+def test_a_word_where_a_number_belongs_is_still_named(tmp_path):
+    rows = PLAIN.splitlines(keepends=True)
+    rows[10] = f"{T[9]},oops\n"
+    with pytest.raises(LiengInputError, match=r"line 11, column F: 'oops' is not a number"):
+        _read(tmp_path, "bad.csv", "".join(rows))
