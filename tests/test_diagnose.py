@@ -95,8 +95,10 @@ def _bad(tmp_path, capsys, text, *extra):
 def test_bad_input(tmp_path, capsys):
     assert "displacement (x)" in _bad(tmp_path, capsys, "t,y\n" + "0,1\n" * 60, "--v0", "1")
     rows = "".join(f"{0.001 * i},{np.sin(i)}\n" for i in range(100))
-    assert "column x" in _bad(tmp_path, capsys, "t,x\n" + rows.replace("0.005,", "0.005,nan", 1).replace(
-        f"{np.sin(5)}", "", 1), "--v0", "1")
+    # a word where a number belongs is named (a NaN or empty cell is a missed sample: tests/test_table.py)
+    assert "line 7, column x: 'n/c'" in _bad(tmp_path, capsys, "t,x\n" + rows.replace("0.005,", "0.005,n/c", 1)
+                                            .replace(f"{np.sin(5)}", "", 1), "--v0", "1")
+    assert "t must increase" in _bad(tmp_path, capsys, "t,x\n" + rows.replace("0.005,", "0.003,", 1), "--v0", "1")
     dup = "t,x\n" + "".join(f"{0.001 * min(i, 50)},{np.sin(i)}\n" for i in range(100))
     assert "column t" in _bad(tmp_path, capsys, dup, "--v0", "1")
     assert "--v0" in _bad(tmp_path, capsys, "t,x\n" + rows)
