@@ -20,7 +20,7 @@ import numpy as np
 from ..errors import LiengInputError
 from ..outputs import finite_json as _finite
 from .baseline import Params, calibrate_fn, fit_baseline
-from .decide import ALPHA, calibrate, decide, misfit, null_replicates
+from .decide import ALPHA, FN_RATIO, calibrate, decide, fn_needed, misfit, null_replicates
 from .evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics, y_on_motion
 from .extend import METRIC, Judge, candidates, gain, refine, split, subset
 from .read import Record, read_record, record_from_arrays, record_from_trc_deck
@@ -188,11 +188,12 @@ def _given(pr, k, other, other_ext, fn, u_fn, st, row, y_is_force, arcs, ylow, r
     null2, n2 = null_replicates(pr, other_ext, fn, u_fn, B=max(replicates // 2, 10), budget=0.5 * budget,
                                 seed=1, y_is_force=y_is_force, arcs=arcs,
                                 ylow=ylow if other_ext.load_k else None)
-    v = null2[k]
-    v = v[np.isfinite(v)]
+    v, e = null2[k], null2[FN_RATIO]
+    fin = np.isfinite(v)
+    v, e = v[fin], e[fin]
     if v.size < 5:
         return None
-    m0, s0, d, _, _, p = calibrate(float(st[k]), row["se"] or 0.0, v, k in ONE_SIDED)
+    m0, s0, d, _, _, p, _ = calibrate(float(st[k]), row["se"] or 0.0, v, k in ONE_SIDED, e, u_fn)
     row["given_rival"] = {"rival": other, "null_mean": m0, "null_sd": s0, "effect_size": d, "p": p,
                           "replicates": n2}
     return p, (d if k in ONE_SIDED else abs(d))
@@ -371,8 +372,17 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             withheld = {"twin_branch": why}
             warnings.append(why + "; the twin-branch evidence is withheld (a load that follows the motion, itself "
                                   "a candidate, also changes the slips' duration)")
-    rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld)
+    rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn)
     warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)
+    for k in CANDIDATES:
+        r = rows[k]
+        size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])
+        un = fn_needed(r, u_fn, nrep) if size >= MARGIN[k] else None
+        if un is not None:
+            r["fn_uncertainty_needed"] = un
+            warnings.append(f"{k} reads {r['effect_size']:+.3g} (over the drop), but an error of fn within the stated "
+                            f"+- {100 * u_fn:.3g} % can make up to {r['fn_band']:.3g}: not named; with fn known to "
+                            f"+- {100 * un:.2g} % (--fn-uncertainty {un:.2g}) the same reading would be significant")
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
 

@@ -14,6 +14,13 @@ For candidate k: z = (S - m0) / sqrt(max(s0, se)**2 + s0**2 / B), with m0, s0
 the replicates' mean and spread and se the record's own standard error
 (its cycle-to-cycle scatter: a real rig is noisier than any simulation);
 p from the normal distribution (one-sided for effects with a direction).
+A statistic that follows the natural frequency (its replicates' values
+regressed on their drawn fn error: a slope beyond twice its standard error)
+is tested at the least favourable fn within the stated uncertainty u: z =
+(S - m0 - band) / sqrt(max(s0, se)**2 + s0**2 / B), band = u (|slope| + its
+standard error), m0 and s0 from the line at the nominal fn (:func:`calibrate`), so that the false-alarm rate
+holds for every fn within u, the edges too (a user's fn off by exactly u),
+not only on average over them.
 The family-wise false-alarm rate over the candidates is held at ALPHA by
 Holm's step-down procedure (a load that follows the motion and a twin
 branch both named: each is tested again against replicates of the other's
@@ -37,7 +44,7 @@ from .evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, UPPER, sta
 from .read import noise_level
 from .segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "null_replicates", "calibrate", "decide", "misfit"]
+__all__ = ["ALPHA", "FN_RATIO", "fn_needed", "null_replicates", "calibrate", "fn_sensitivity", "decide", "misfit"]
 
 #: family-wise false-alarm rate
 ALPHA = 0.05
@@ -74,11 +81,12 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
     sx = noise_level(pr.x)
     y = pr.y
     sy = noise_level(y) if y is not None else 0.0
-    vals = {k: [] for k in (*CANDIDATES, *GOF)}
+    vals = {k: [] for k in (*CANDIDATES, *GOF, FN_RATIO)}
     t0 = time.perf_counter()
     done = 0
     for b in range(B):
-        fb = fn * (1.0 + u_fn * rng.uniform(-1.0, 1.0))
+        e = u_fn * rng.uniform(-1.0, 1.0)
+        fb = fn * (1.0 + e)
         xs, vs, _ = simulate(pr, base, fb, ylow)
         xb = xs + sx * rng.standard_normal(xs.size)
         yb = None
@@ -98,6 +106,7 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             continue
         st.update(aux["gof"])
+        st[FN_RATIO] = e
         for k in vals:
             vals[k].append(st[k])
         done += 1
@@ -109,21 +118,57 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
     return {k: np.asarray(v, float) for k, v in vals.items()}, done
 
 
-def calibrate(S: float, se: float, v, one_sided: bool) -> tuple:
+#: the key of the replicates' drawn natural frequency error (fb / fn - 1)
+FN_RATIO = "_fn_ratio"
+
+
+def fn_sensitivity(v, e, u: float):
+    """How a statistic follows the natural frequency: the replicates' values
+    ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, uniform within
+    +-u).  Returns (m0, s0, band) when the slope is significant (beyond twice
+    its standard error): the null mean at the nominal fn, the spread about
+    the line (the noise alone) and the largest shift an fn error within u
+    makes, u |slope|; None otherwise."""
+    if e is None or u <= 0 or v.size < 8 or not np.ptp(e) > 0:
+        return None
+    A = np.column_stack([np.ones(e.size), e - e.mean()])
+    co, *_ = np.linalg.lstsq(A, v, rcond=None)
+    r = v - A @ co
+    s = float(np.sqrt(np.sum(r * r) / (v.size - 2)))
+    se_b = s / float(np.sqrt(np.sum((e - e.mean()) ** 2)))
+    if not abs(co[1]) > 2.0 * se_b:
+        return None
+    m0 = float(co[0] - co[1] * e.mean())
+    return m0, s, u * (abs(float(co[1])) + se_b)
+
+
+def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0) -> tuple:
     """A statistic S with standard error se against the finite replicates'
     values v (module docstring): (m0, s0, S - m0, its standard deviation, z,
-    p)."""
-    m0, s0 = float(np.mean(v)), float(np.std(v, ddof=1))
+    p, band).
+
+    With the replicates' drawn fn errors ``e`` (within +-``u``), a statistic
+    that follows fn (:func:`fn_sensitivity`) is tested at the least
+    favourable fn within the stated uncertainty: its departure from the null
+    line at the nominal fn less the largest shift an fn error makes, against
+    the noise about that line (valid for any true fn within u, not only on
+    average over them)."""
+    fit = fn_sensitivity(v, e, u)
+    if fit is None:
+        m0, s0, band = float(np.mean(v)), float(np.std(v, ddof=1)), 0.0
+    else:
+        m0, s0, band = fit
     den = math.sqrt(max(s0, se) ** 2 + s0 ** 2 / v.size)
     d = S - m0
-    z = d / den if den > 0 else (math.copysign(50.0, d) if d else 0.0)
+    excess = (d - band if one_sided else math.copysign(max(abs(d) - band, 0.0), d))
+    z = excess / den if den > 0 else (math.copysign(50.0, excess) if excess else 0.0)
     z = float(np.clip(z, -50.0, 50.0))
-    p = _norm_sf(z) if one_sided else 2.0 * _norm_sf(abs(z))
-    return m0, s0, d, den, z, float(p)
+    p = _norm_sf(z) if one_sided else min(1.0, 2.0 * _norm_sf(abs(z)))
+    return m0, s0, d, math.sqrt(den ** 2 + band ** 2), z, float(p), band
 
 
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
-           withheld=None) -> dict:
+           withheld=None, u_fn: float = 0.0) -> dict:
     """The evidence table: for every candidate the statistic, the null mean
     and spread, z, p, Holm's decision and whether it is named.
 
@@ -147,17 +192,20 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
                            effect_size=float(st[k]), applicable=True, calibration="permutation within the record")
             continue
         v = null.get(k, np.array([]))
-        v = v[np.isfinite(v)]
+        e = null.get(FN_RATIO)
+        fin = np.isfinite(v)
+        v = v[fin]
+        e = e[fin] if e is not None and e.size == fin.size else None
         S = float(st[k])
         ok = (applicable is None or k in applicable) and v.size >= 5 and math.isfinite(S) and math.isfinite(se[k])
         if not ok:
             rows[k] = dict(statistic=S, null_mean=0.0, null_sd=0.0, se=float(se[k]) if math.isfinite(se[k]) else None,
                            z=0.0, p=1.0, effect_size=0.0, applicable=False)
             continue
-        e = float(se[k]) if math.isfinite(se[k]) else 0.0
-        m0, s0, d, den, z, p = calibrate(S, e, v, k in ONE_SIDED)
-        rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=e, z=z, p=float(p), effect_size=d, applicable=True,
-                       interval=[d - 1.96 * den, d + 1.96 * den])
+        err = float(se[k]) if math.isfinite(se[k]) else 0.0
+        m0, s0, d, den, z, p, band = calibrate(S, err, v, k in ONE_SIDED, e, u_fn)
+        rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=err, z=z, p=float(p), effect_size=d, applicable=True,
+                       interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band)
     # Holm's step-down over the applicable candidates
     app = sorted((r["p"], k) for k, r in rows.items() if r["applicable"])
     m = len(app)
@@ -178,6 +226,24 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
             r["beyond_model"] = (f"{k}: a size of {size:.3g} is beyond the {UPPER[k]} its model allows: the record "
                                  f"departs from the baseline there for another reason (check --fn)")
     return rows
+
+
+def fn_needed(row: dict, u_fn: float, n: int) -> float | None:
+    """For a candidate that is not significant only because an fn error
+    within ``u_fn`` could make its reading (its ``fn_band``): the relative
+    uncertainty of fn at which the same reading would pass its Holm level,
+    or None."""
+    band, size = row.get("fn_band", 0.0), row.get("effect_size", 0.0)
+    if not (row.get("applicable") and band > 0 and u_fn > 0) or row.get("significant"):
+        return None
+    s0, se = row.get("null_sd") or 0.0, row.get("se") or 0.0
+    den = math.sqrt(max(s0, se) ** 2 + s0 ** 2 / max(n, 1))
+    zreq = -_norm_ppf(row.get("holm_level", ALPHA))
+    room = abs(size) - zreq * den
+    if not room > 0:
+        return None
+    u = u_fn * min(room / band, 1.0)
+    return u if u < u_fn else None
 
 
 def misfit(gof: dict, null: dict) -> list:
