@@ -67,6 +67,30 @@ def test_gain_is_measured_on_held_out_cycles():
     assert d.extended_error < d.baseline_error
 
 
+def test_gain_is_judged_at_both_ends_of_the_record():
+    """Two held-out parts: the record's last 30 % (models fitted on its first
+    70 %) and its first 30 % (models fitted on its last 70 %), each with at
+    least three cycles; the same model on both sides gains exactly 0."""
+    from lieng.diagnose.baseline import fit_baseline
+    from lieng.diagnose.extend import folds, gain_folds
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    rec = synthesize("static_ageing", 0)
+    r = record_from_arrays(rec.t, rec.x, rec.v0_col if rec.v0_col is not None else rec.v0, rec.y)
+    pr = prepare(r)
+    c = find_cycles(pr, rec.fn)
+    parts = folds(pr, c)
+    t0, t1 = float(pr.t[0]), float(pr.t[-1]) + pr.dt
+    assert len(parts) == 2
+    (a0, a1, h0, h1), (b0, b1, g0, g1) = parts
+    assert (a0, h1, b1, g0) == (t0, t1, t1, t0) and a1 == h0 and b0 == g1 and g1 < h0
+    ts = pr.t[c.peak_i]
+    assert np.count_nonzero(ts >= h0) >= 3 and np.count_nonzero(ts < g1) >= 3
+    base = fit_baseline(pr, c, rec.fn)
+    g = gain_folds(pr, c, rec.fn, [(h0, h1, base, base), (g0, g1, base, base)])
+    assert g["parts"] == 2 and g["gain"] == 0.0 and g["e0"] > 0
+
+
 def test_cli_writes_json_report_and_plots(tmp_path, capsys):
     rec = synthesize("drive_modulation", 0)
     p = tmp_path / "d.csv"

@@ -22,7 +22,7 @@ from ..outputs import finite_json as _finite
 from .baseline import Params, calibrate_fn, fit_baseline
 from .decide import ALPHA, FN_RATIO, calibrate, decide, fn_needed, misfit, null_replicates
 from .evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics, y_on_motion
-from .extend import METRIC, Judge, candidates, gain, refine, split, subset
+from .extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset
 from .read import Record, read_record, record_from_arrays, record_from_trc_deck
 from .segment import estimate_fn, find_cycles, prepare, slip_seconds
 
@@ -134,9 +134,30 @@ def _stiffness_from_sticks(pr):
     return float(np.median(pos)) if pos else None
 
 
-def _train_trough(pr, c, tsplit) -> float:
-    sel = pr.t[c.peak_i] < tsplit
+def _train_trough(pr, c, sel) -> float:
+    """The mean trough of the training cycles ``sel`` (all when none)."""
     return float(np.mean(pr.x[c.trough_i[sel]])) if np.any(sel) else float(np.mean(pr.x[c.trough_i]))
+
+
+def _extend(k, base, train, pr, c, fn, st, aux, win, trough):
+    """Effect ``k``'s nested extension of ``base`` fitted on the training
+    part ``win`` (its Judge ``train``): the best candidate on the training
+    error, refined; the baseline itself when none is better (its term at
+    zero).  Returns (ext, its training error, the baseline's, the candidates)."""
+    cands = candidates(k, base, pr, c, fn, st, aux, win)
+    e_train0 = train.error(base)
+    ext, e_tr = base, e_train0
+    if cands:
+        errs = [train.error(p, bool(p.trig_ay)) for p in cands]
+        if np.isfinite(min(errs)):
+            ext = cands[int(np.argmin(errs))]
+            mask = (pr.t >= win[0]) & (pr.t < win[1])
+            ext, e_tr = refine(k, ext, base, train, pr, fn, mask, trough, ylow=aux.get("ylow"))
+            if ext.trig_ay:           # the same metric for both: with the normal channel's unlocked part
+                e_train0 = train.error(base, True)
+            if not e_tr < e_train0:   # nested: the extension's own term at zero is the baseline itself
+                ext, e_tr = base, e_train0
+    return ext, e_tr, e_train0, cands
 
 
 def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=None) -> Diagnosis:
@@ -386,33 +407,33 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
 
-    # fit on the training part, judge on the rest
-    tsplit = split(pr, c)
-    sel_tr = pr.t[c.peak_i] < tsplit
-    ctr = subset(c, sel_tr)
-    base = fit_baseline(pr, ctr, fn_used) if ctr.n >= 3 else base_all
-    base.y_c = base_all.y_c
-    train = Judge(pr, c, fn_used, float(pr.t[0]), tsplit, aux.get("ylow"))
+    # fit on the training part, judge on the rest: the record's end (models fitted on its first 70 %) and,
+    # where it has enough cycles, its beginning (models fitted on its last 70 %)
+    parts = folds(pr, c)
+    tsplit = parts[0][1]
+    fold_models = []
+    for lo, hi, _, _ in parts:
+        sel = (pr.t[c.peak_i] >= lo) & (pr.t[c.peak_i] < hi)
+        cf = subset(c, sel)
+        b = fit_baseline(pr, cf, fn_used) if cf.n >= 3 else base_all
+        b.y_c = base_all.y_c
+        fold_models.append((b, Judge(pr, c, fn_used, lo, hi, aux.get("ylow")), (lo, hi),
+                            _train_trough(pr, c, sel)))
+    base = fold_models[0][0]
     effects = []
     fitted = {}
     for k in named:
         # the extension starts from the effect's size over the baseline's replicates (the statistic less
         # what the baseline itself gives), not from the raw statistic
-        cands = candidates(k, base, pr, c, fn_used, {**st, k: rows[k]["effect_size"], k + "_raw": st[k]}, aux,
-                           tsplit)
-        e_train0 = train.error(base)
-        ext, e_tr = base, e_train0
-        if cands:
-            errs = [train.error(p, bool(p.trig_ay)) for p in cands]
-            if np.isfinite(min(errs)):
-                ext = cands[int(np.argmin(errs))]
-                ext, e_tr = refine(k, ext, base, train, pr, fn_used, pr.t < tsplit, _train_trough(pr, c, tsplit),
-                                   ylow=aux.get("ylow"))
-                if ext.trig_ay:           # the same metric for both: with the normal channel's unlocked part
-                    e_train0 = train.error(base, True)
-                if not e_tr < e_train0:   # nested: the extension's own term at zero is the baseline itself
-                    ext, e_tr = base, e_train0
-        g = gain(pr, c, fn_used, base, ext, tsplit, aux.get("ylow"))
+        stk = {**st, k: rows[k]["effect_size"], k + "_raw": st[k]}
+        fits, first = [], None
+        for (b, train, win, trough), part in zip(fold_models, parts):
+            res = _extend(k, b, train, pr, c, fn_used, stk, aux, win, trough)
+            fits.append((part[2], part[3], b, res[0]))
+            first = first or res
+        # the first fold's extension is the one reported (fitted on the record's first 70 %)
+        ext, e_tr, e_train0, cands = first
+        g = gain_folds(pr, c, fn_used, fits, aux.get("ylow"))
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0
         r = rows[k]
@@ -434,7 +455,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                      "training part")
     effects.sort(key=lambda e: named.index(e["effect"]))
     primary_ext, primary_gain = (fitted[named[0]][0], fitted[named[0]][1]) if named else (base, None)
-    g0 = primary_gain or gain(pr, c, fn_used, base, base, tsplit, aux.get("ylow"))
+    g0 = primary_gain or gain_folds(pr, c, fn_used, [(p[2], p[3], m[0], m[0]) for p, m in zip(parts, fold_models)],
+                                    aux.get("ylow"))
     if named:
         effect = named[0]
         reason = "; ".join(f"{k}: size {rows[k]['effect_size']:+.3g} (margin {MARGIN[k]}), p = {rows[k]['p']:.2g}"

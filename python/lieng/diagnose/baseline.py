@@ -30,7 +30,7 @@ The simulator (:func:`simulate`) runs the compiled slider core
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, fields
 
 import numpy as np
 

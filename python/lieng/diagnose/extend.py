@@ -2,7 +2,10 @@
 
 The record is split in time: the baseline and every extension are fitted on
 the first 70 % (less when that would leave fewer than three cycles to test
-on), and judged on the rest.  For each named effect a few candidates of the
+on), and judged on the rest; and, where each side keeps enough cycles, fitted
+again on the last 70 % and judged on the first 30 % (:func:`folds`: a record
+whose conditions change along it, a stepped drive or holds, is judged where
+they differ, not only where they end).  For each named effect a few candidates of the
 nested extension (the baseline plus that one term) are fitted on the
 training part from the evidence's estimate and the best on the training
 error kept.
@@ -41,10 +44,11 @@ from .baseline import Params, identify, model_y, pr_like, run_slice, simulate, s
 from .evidence import _stick_series, drive_scan, level_fit, lowpass, stick_times
 from .segment import Cycles, Prepared, find_cycles, first_below
 
-__all__ = ["TRAIN", "METRIC", "split", "Judge", "candidates", "gain"]
+__all__ = ["TRAIN", "METRIC", "split", "folds", "window", "Judge", "candidates", "gain", "gain_folds"]
 
 TRAIN = 0.7
-METRIC = ("RMS of normalised differences on the held-out cycles, one cycle ahead from the record's own state (from "
+METRIC = ("RMS of normalised differences on the held-out cycles (the record's last 30 % with models fitted on its "
+          "first 70 %, and its first 30 % with models fitted on its last 70 %), one cycle ahead from the record's own state (from "
           "each trough): stick time to the next slip's halfway crossing (/ mean period), peak and trough (/ drop D); "
           "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing (/ D); "
           "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in "
@@ -72,6 +76,25 @@ def split(pr: Prepared, c: Cycles) -> float:
     if np.count_nonzero(ts > tsplit) < 4 and ts.size >= 6:
         tsplit = float(ts[-4 if ts.size >= 8 else -3]) - 0.5 * pr.dt
     return tsplit
+
+
+def folds(pr: Prepared, c: Cycles) -> list:
+    """The held-out parts the gain is measured on, each with the training
+    part its models are fitted on: (train_lo, train_hi, test_lo, test_hi)
+    in seconds.  The record's end (the first 70 % trains, as :func:`split`)
+    and, when each side keeps at least three cycles, its beginning (the last
+    70 % trains): a record whose conditions change along it (a stepped drive,
+    holds) is judged where they differ, not only where they end."""
+    t0, t1 = float(pr.t[0]), float(pr.t[-1]) + pr.dt
+    ts = pr.t[c.peak_i]
+    fwd = split(pr, c)
+    out = [(t0, fwd, fwd, t1)]
+    back = float(pr.t[0] + (1.0 - TRAIN) * (pr.t[-1] - pr.t[0]))
+    if np.count_nonzero(ts < back) < 4 and ts.size >= 6:
+        back = float(ts[3 if ts.size >= 8 else 2]) + 0.5 * pr.dt
+    if np.count_nonzero(ts < back) >= 4 and np.count_nonzero(ts >= back) >= 3:
+        out.append((back, t1, t0, back))
+    return out
 
 
 #: instants of the mean slip waveform the Judge compares
@@ -249,12 +272,19 @@ def _per_load(base: Params, pr: Prepared, c: Cycles, fn: float, load, sel, **kw)
     return [base.copy(fs=fs, **kw), base.copy(sg=sg, fg=np.minimum(fg, fs), fs=fs, **kw)]
 
 
+def window(pr: Prepared, train) -> tuple:
+    """A training part as (lo, hi) seconds: a split time means from the start."""
+    return (float(pr.t[0]), float(train)) if np.isscalar(train) else (float(train[0]), float(train[1]))
+
+
 def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st: dict, aux: dict,
-               tsplit: float) -> list:
+               train) -> list:
     """Extended models for ``effect`` (the baseline plus one term), from the
-    evidence on the training part."""
-    tr_mask = pr.t < tsplit
-    ctr_sel = pr.t[c.peak_i] < tsplit
+    evidence on the training part ``train`` ((lo, hi) seconds, or the time
+    that ends it)."""
+    lo, hi = window(pr, train)
+    tr_mask = (pr.t >= lo) & (pr.t < hi)
+    ctr_sel = (pr.t[c.peak_i] >= lo) & (pr.t[c.peak_i] < hi)
     target = float(np.mean(pr.x[c.trough_i[ctr_sel]])) if np.any(ctr_sel) else float(np.mean(pr.x[c.trough_i]))
     D = aux["D"]
     Fbar = max(float(np.median(base.fg)), 1e-12)
@@ -269,7 +299,7 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             out.append(lvl(base.copy(delta=s * st["twin_branch"] * D)))
     elif effect == "load_variation" and ylow is not None:
         idx, s, F, br, sid = slip_friction(pr, c, fn)
-        m = pr.t[idx] < tsplit
+        m = tr_mask[idx]
         if np.count_nonzero(m) > 10:
             ss = s[m] / max(float(np.std(s[m])), 1e-12)
             yl = ylow[idx][m]
@@ -326,7 +356,7 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 grid = f_tr + np.linspace(-half, half, num) / T
                 f_tr = float(max(grid, key=lambda f: _line_fit(hp, tt, f)[0]))
             idx, s, F, br, sid = slip_friction(pr, c, fn)
-            m = pr.t[idx] < tsplit
+            m = tr_mask[idx]
             ti = pr.t[idx][m]
             ss = s[m] / max(float(np.std(s[m])), 1e-12)
             A = np.column_stack([np.ones(ti.size), ss, ss ** 2, br[m], np.sin(2 * math.pi * f_tr * ti),
@@ -385,35 +415,60 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
 
 def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: float, ylow=None,
          nboot: int = 200, seed: int = 1) -> dict:
-    """Errors of the baseline and the extension on the held-out part, the
-    gain and its 90 % interval (resampling the held-out cycles)."""
-    J = Judge(pr, c, fn, tsplit, float(pr.t[-1]) + pr.dt, ylow)
-    with_y = bool(ext.trig_ay)
-    vb = J.vector(base, with_y)
-    ve = J.vector(ext, with_y) if ext is not base else vb
-    if vb is None or ve is None:
-        return dict(e0=0.0, e1=0.0, gain=0.0, interval=[0.0, 0.0], x_base=None, x_ext=None)
-    e0, e1 = J.combine(*vb), J.combine(*ve)
+    """Errors of the baseline and the extension on the held-out part after
+    ``tsplit``, the gain and its 90 % interval (resampling the held-out
+    cycles): :func:`gain_folds` with one fold."""
+    return gain_folds(pr, c, fn, [(tsplit, float(pr.t[-1]) + pr.dt, base, ext)], ylow, nboot, seed)
+
+
+def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot: int = 200, seed: int = 1) -> dict:
+    """Errors of the baseline and the extension on held-out parts, each
+    judged with the models fitted without it: ``fits`` lists (test_lo,
+    test_hi, base, ext).  e**2 is the cycle-weighted mean over the parts of
+    each part's squared error (:meth:`Judge.combine`); gain = 1 - e_ext /
+    e_base with a 90 % interval from resampling the held-out cycles within
+    each part.  The traces (``x_base``, ``x_ext``) are the first fit's."""
+    parts = []
+    for lo, hi, base, ext in fits:
+        J = Judge(pr, c, fn, lo, hi, ylow)
+        with_y = bool(ext.trig_ay)
+        vb = J.vector(base, with_y)
+        ve = J.vector(ext, with_y) if ext is not base else vb
+        if vb is not None and ve is not None:
+            parts.append((J, vb, ve, ext is not base))
+    base, ext = fits[0][2], fits[0][3]
+    if not parts:
+        return dict(e0=0.0, e1=0.0, gain=0.0, interval=[0.0, 0.0], x_base=None, x_ext=None, parts=0)
+    n = np.array([vb[0].shape[0] for _, vb, _, _ in parts], float)
+    w = n / n.sum()
+
+    def errors(picks=None):
+        e0 = e1 = 0.0
+        for j, (J, vb, ve, _) in enumerate(parts):
+            rows = None if picks is None else picks[j]
+            e0 += w[j] * J.combine(*vb, rows=rows) ** 2
+            e1 += w[j] * J.combine(*ve, rows=rows) ** 2
+        return math.sqrt(e0), math.sqrt(e1)
+
+    e0, e1 = errors()
     try:
         x_base = simulate(pr, base, fn, ylow)[0]
         x_ext = simulate(pr, ext, fn, ylow)[0] if ext is not base else x_base
     except LiengInputError:
         x_base = x_ext = None
     g = 1.0 - e1 / e0 if e0 > 0 else 0.0
-    # interval: resample the held-out cycles (each with its one-cycle-ahead prediction)
+    # interval: resample the held-out cycles (each with its one-cycle-ahead prediction), part by part
     rng = np.random.default_rng(seed)
-    n = vb[0].shape[0]
     gs = []
-    if n >= 3 and ext is not base:
+    if np.all(n >= 3) and any(p[3] for p in parts):
         for _ in range(nboot):
-            pick = rng.integers(0, n, n)
-            a, b = J.combine(*vb, rows=pick), J.combine(*ve, rows=pick)
+            a, b = errors([rng.integers(0, int(m), int(m)) for m in n])
             if a > 0:
                 gs.append(1.0 - b / a)
     iv = [float(np.percentile(gs, 5)), float(np.percentile(gs, 95))] if len(gs) >= 20 else [g, g]
     g = float(np.clip(g, -1e6, 1.0))
     return dict(e0=e0, e1=e1, gain=g, interval=[float(np.clip(v, -1e6, 1.0)) for v in iv], x_base=x_base,
-                x_ext=x_ext)
+                x_ext=x_ext, parts=len(parts))
 
 
 #: the parameter each extension scales (refined on the training error)

@@ -365,7 +365,6 @@ def _hum_lines(x, dt):
     s = x - np.mean(x)
     w = np.hanning(n)
     S = np.abs(np.fft.rfft(s * w))
-    f = np.fft.rfftfreq(n, dt)
     found = []
     nyq = 0.5 / dt
     tt = np.arange(n) * dt
