@@ -465,3 +465,27 @@ def test_spikes_come_out_before_a_jittered_record_is_resampled():
     rec = record_from_arrays(t, x, 1.0)
     assert any("spikes" in s and "before resampling" in s for s in rec.notes), rec.notes
     assert np.max(np.abs(rec.x - np.interp(rec.t, t, clean))) < 0.02
+
+
+def test_a_second_mode_ringing_after_each_arrest_is_read():
+    """A rig's second mode rings after each arrest (the 1-DoF slider is then
+    in stick): a decaying oscillation at 6 fn added after every trough of an
+    effect-free record, 0.05 D decaying as exp(-2 fn t), is read as its RMS
+    over the two natural periods after the trough, 0.05 D / 4 = 0.0125 D
+    (the mean square of the decay over 2/fn is 1/16 of 0.05**2 D**2); the
+    record itself as none of it."""
+    from lieng.diagnose.evidence import arrest_ringing
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    rec = synthesize("none", 3)
+    r = record_from_arrays(rec.t, rec.x, rec.v0_col if rec.v0_col is not None else rec.v0, rec.y)
+    pr = prepare(r)
+    c = find_cycles(pr, rec.fn)
+    D = c.amplitude(pr.x)
+    assert abs(arrest_ringing(pr, c, rec.fn, D)) < 0.005
+    x = pr.x.copy()
+    for i in c.trough_i:
+        tt = pr.t[i:] - pr.t[i]
+        x[i:] += 0.05 * D * np.exp(-tt * rec.fn * 2.0) * np.sin(2 * np.pi * 6 * rec.fn * tt)
+    pr.x = x
+    assert arrest_ringing(pr, c, rec.fn, D) == pytest.approx(0.0125, rel=0.2)

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..errors import LiengInputError
 from .baseline import Params, pr_like, simulate
-from .evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, UPPER, statistics
+from .evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, RIG, UPPER, statistics
 from .read import noise_level
 from .segment import Prepared, find_cycles
 
@@ -81,7 +81,7 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
     sx = noise_level(pr.x)
     y = pr.y
     sy = noise_level(y) if y is not None else 0.0
-    vals = {k: [] for k in (*CANDIDATES, *GOF, FN_RATIO)}
+    vals = {k: [] for k in (*CANDIDATES, *GOF, *RIG, FN_RATIO)}
     t0 = time.perf_counter()
     done = 0
     for b in range(B):
@@ -246,13 +246,13 @@ def fn_needed(row: dict, u_fn: float, n: int) -> float | None:
     return u if u < u_fn else None
 
 
-def misfit(gof: dict, null: dict) -> list:
+def misfit(gof: dict, null: dict, features=GOF) -> list:
     """The goodness-of-fit features in which the record departs from the
     baseline's replicates beyond their spread (|z| > 3.5, about 0.05 over
     the three at once) and by more than GOF_MARGIN: [(name, record value,
     replicates' mean)]."""
     out = []
-    for k in GOF:
+    for k in features:
         v = null.get(k, np.array([]))
         v = v[np.isfinite(v)]
         if v.size < 5:
