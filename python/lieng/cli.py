@@ -439,16 +439,19 @@ def build_parser() -> argparse.ArgumentParser:
                                     "shape, constant load and drive) to a measured stick-slip record, test each "
                                     "candidate effect against the fitted baseline's own replicates (family-wise "
                                     "false-alarm rate 5 percent), fit the extension of each effect named and "
-                                    "measure its gain on the held-out last 30 percent of the record.")
+                                    "measure its gain on held-out cycles (the record's last 30 percent with "
+                                    "models fitted on its first 70, and its first 30 with models fitted on "
+                                    "its last 70).")
     dg.add_argument("data", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
-                    "the header (comma, TAB or whitespace), or a TRC deck")
+                    "the header ('F [mN]', 'time/s', 'Time (s)', or a row of units; comma, semicolon, TAB or whitespace, a "
+                    "decimal comma, '#' comments; rows with a missing value left out), or a TRC deck")
     dg.add_argument("--v0", type=float, metavar="MM_S",
                     help="drive velocity (mm/s) when the record has no v0/position column")
     dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "
                     "estimated from the slips when not given (a TRC deck gives it: OMNH)")
     dg.add_argument("--fn-uncertainty", type=float, metavar="REL",
-                    help="relative uncertainty of --fn (default 0.05); the slip-shape evidence is calibrated over "
-                         "it: an fn measured to 0.01 lets smaller twin branches through")
+                    help="relative uncertainty of --fn (default 0.05); the slip-shape evidence is tested at the "
+                         "least favourable fn within it: an fn measured to 0.01 lets smaller twin branches through")
     dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record; estimated from the sticks when not given")
     dg.add_argument("-o", "--outdir", required=True, help="output directory")
