@@ -152,7 +152,8 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0) -
     favourable fn within the stated uncertainty: its departure from the null
     line at the nominal fn less the largest shift an fn error makes, against
     the noise about that line (valid for any true fn within u, not only on
-    average over them)."""
+    average over them); the standard deviation returned then spans the band
+    too (d +- 1.96 of it is d +- (band + 1.96 sd))."""
     fit = fn_sensitivity(v, e, u)
     if fit is None:
         m0, s0, band = float(np.mean(v)), float(np.std(v, ddof=1)), 0.0
@@ -164,7 +165,8 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0) -
     z = excess / den if den > 0 else (math.copysign(50.0, excess) if excess else 0.0)
     z = float(np.clip(z, -50.0, 50.0))
     p = _norm_sf(z) if one_sided else min(1.0, 2.0 * _norm_sf(abs(z)))
-    return m0, s0, d, math.sqrt(den ** 2 + band ** 2), z, float(p), band
+    # the interval d +- 1.96 sd widened by the band on each side (the true fn anywhere within u)
+    return m0, s0, d, den + band / 1.96, z, float(p), band
 
 
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
