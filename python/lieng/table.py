@@ -130,8 +130,8 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
     ----------
     path : str or path-like
         The file: comma, semicolon, TAB or whitespace separated (the header
-        row decides); blank lines and comment lines (``#``, ``%``, ``//``,
-        ``;``) are skipped, also before the header.  A header cell may be
+        row decides); blank lines and comment lines (``#``, ``%``, ``//``)
+        are skipped, also before the header.  A header cell may be
         quoted and carry its unit as ``name [unit]``, ``name (unit)`` or
         ``name/unit``; a row of units alone under the header is read as
         the units.  With a semicolon, TAB or whitespace separator a decimal
@@ -164,7 +164,8 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
     k0 = next((k for k, r in enumerate(rows) if r.strip() and not _is_comment(r)), None)
     if k0 is None:
         raise LiengInputError(f"{path}: empty file: expected a header {expect}")
-    first = next((r for r in rows[k0 + 1:] if r.strip() and not _is_comment(r)), None)
+    k1 = next((k for k in range(k0 + 1, len(rows)) if rows[k].strip() and not _is_comment(rows[k])), None)
+    first = None if k1 is None else rows[k1]
     sep, head = _split_header(rows[k0], first)
     head = [_unquote(h) for h in head]
     while len(head) > 1 and not head[-1]:
@@ -179,7 +180,6 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
     start = k0 + 1
     if first is not None:
         # a row of units alone under the header ("s,N,N"): no cell of it is a number
-        k1 = rows.index(first, k0 + 1)
         cells = [_unquote(c) for c in (first.split(sep) if sep else first.split())][:ncol]
         unitlike = len(cells) == ncol and all(c and len(c) <= 12 for c in cells)
         if unitlike:

@@ -122,6 +122,13 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
 FN_RATIO = "_fn_ratio"
 
 
+def noise_sd(s0: float, se: float, n: int) -> float:
+    """The standard deviation a statistic's departure is judged by: the
+    larger of the replicates' spread s0 and the record's own standard error
+    se, with the uncertainty of the replicates' mean over n of them."""
+    return math.sqrt(max(s0, se) ** 2 + s0 ** 2 / max(n, 1))
+
+
 def fn_sensitivity(v, e, u: float):
     """How a statistic follows the natural frequency: the replicates' values
     ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, uniform within
@@ -159,7 +166,7 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0) -
         m0, s0, band = float(np.mean(v)), float(np.std(v, ddof=1)), 0.0
     else:
         m0, s0, band = fit
-    den = math.sqrt(max(s0, se) ** 2 + s0 ** 2 / v.size)
+    den = noise_sd(s0, se, v.size)
     d = S - m0
     excess = (d - band if one_sided else math.copysign(max(abs(d) - band, 0.0), d))
     z = excess / den if den > 0 else (math.copysign(50.0, excess) if excess else 0.0)
@@ -238,8 +245,7 @@ def fn_needed(row: dict, u_fn: float, n: int) -> float | None:
     band, size = row.get("fn_band", 0.0), row.get("effect_size", 0.0)
     if not (row.get("applicable") and band > 0 and u_fn > 0) or row.get("significant"):
         return None
-    s0, se = row.get("null_sd") or 0.0, row.get("se") or 0.0
-    den = math.sqrt(max(s0, se) ** 2 + s0 ** 2 / max(n, 1))
+    den = noise_sd(row.get("null_sd") or 0.0, row.get("se") or 0.0, n)
     zreq = -_norm_ppf(row.get("holm_level", ALPHA))
     room = abs(size) - zreq * den
     if not room > 0:

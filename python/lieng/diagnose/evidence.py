@@ -503,7 +503,7 @@ def _asymmetry(pr: Prepared, c: Cycles):
 GOF = ("slip_duration", "peak_spread", "period_spread")
 GOF_MARGIN = {"slip_duration": 0.25, "peak_spread": 0.10, "period_spread": 0.10, "arrest_ringing": 0.01}
 #: features of the rig read like GOF but not a miss of the friction model: what rings after each arrest
-#: (a second mode of the rig, :func:`arrest_ringing`) withholds the slip-shape evidence it bends
+#: (a second mode of the rig, :func:`arrest_ringing`), warned about where it departs from the replicates
 RIG = ("arrest_ringing",)
 
 

@@ -29,7 +29,7 @@ the model of
   that part of the record's y and of the model's (each less the baseline's
   regression of y on x and x'), over y's spread.
 
-gain = 1 - e_extended / e_baseline, with a 90 % interval from resampling the
+gain = 1 - e_extended / e_baseline (:func:`gain_folds`), with a 90 % interval from resampling the
 held-out cycles; always finite.
 """
 
@@ -44,7 +44,7 @@ from .baseline import Params, identify, model_y, pr_like, run_slice, simulate, s
 from .evidence import _stick_series, drive_scan, level_fit, lowpass, stick_times
 from .segment import Cycles, Prepared, find_cycles, first_below
 
-__all__ = ["TRAIN", "METRIC", "split", "folds", "window", "Judge", "candidates", "gain", "gain_folds"]
+__all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds"]
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles (the record's last 30 % with models fitted on its "
@@ -272,17 +272,11 @@ def _per_load(base: Params, pr: Prepared, c: Cycles, fn: float, load, sel, **kw)
     return [base.copy(fs=fs, **kw), base.copy(sg=sg, fg=np.minimum(fg, fs), fs=fs, **kw)]
 
 
-def window(pr: Prepared, train) -> tuple:
-    """A training part as (lo, hi) seconds: a split time means from the start."""
-    return (float(pr.t[0]), float(train)) if np.isscalar(train) else (float(train[0]), float(train[1]))
-
-
 def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st: dict, aux: dict,
-               train) -> list:
+               train: tuple) -> list:
     """Extended models for ``effect`` (the baseline plus one term), from the
-    evidence on the training part ``train`` ((lo, hi) seconds, or the time
-    that ends it)."""
-    lo, hi = window(pr, train)
+    evidence on the training part ``train`` ((lo, hi) seconds)."""
+    lo, hi = train
     tr_mask = (pr.t >= lo) & (pr.t < hi)
     ctr_sel = (pr.t[c.peak_i] >= lo) & (pr.t[c.peak_i] < hi)
     target = float(np.mean(pr.x[c.trough_i[ctr_sel]])) if np.any(ctr_sel) else float(np.mean(pr.x[c.trough_i]))
@@ -411,14 +405,6 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
         for sc in (1.0, 2.0, 4.0):
             out.append(lvl(base.copy(creep1=float(np.clip(sc * st["creep"], 0.0, 0.9)))))
     return out
-
-
-def gain(pr: Prepared, c: Cycles, fn: float, base: Params, ext: Params, tsplit: float, ylow=None,
-         nboot: int = 200, seed: int = 1) -> dict:
-    """Errors of the baseline and the extension on the held-out part after
-    ``tsplit``, the gain and its 90 % interval (resampling the held-out
-    cycles): :func:`gain_folds` with one fold."""
-    return gain_folds(pr, c, fn, [(tsplit, float(pr.t[-1]) + pr.dt, base, ext)], ylow, nboot, seed)
 
 
 def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot: int = 200, seed: int = 1) -> dict:

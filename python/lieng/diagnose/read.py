@@ -177,7 +177,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         if role is None and not unit and "_" in name:
             # "time_s", "force_mN": the unit as the name's last part
             stem, suffix = name.rsplit("_", 1)
-            if any(suffix.lower() in tab_ for tab_ in (_LENGTH, _VELOCITY, _TIME, _FORCE)) and suffix:
+            if suffix and any(suffix.lower() in units_of for units_of in (_LENGTH, _VELOCITY, _TIME, _FORCE)):
                 role, unit = _role(stem), suffix
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
