@@ -206,3 +206,25 @@ def test_a9_1_to_a9_6_each_geometric_feature_changes_the_cycle():
         res[k] = (fc.origin_stable, [round(c.amplitude, 2) for c in fc.cycles])
     assert res == {1: (False, [25.53]), 2: (False, [22.32]), 3: (True, [7.11, 22.94]), 4: (False, [32.27]),
                    5: (False, [24.78]), 6: (False, [22.91])}
+
+
+def test_fig_2_23_the_slope_at_the_origin_decides_its_stability():
+    """Ch. 2.3.1.4 a (seed lines 2404-2413), Fig. 2.23: "for negative slopes dv/dx the singular point 0 is
+    stable ... while for positive slopes it is unstable"; 2.3.1.4 (2468-2476): "Only if the origin is stable,
+    there is an unstable limiting cycle around it".  Holds on the shipped decks: the stable deck's slope
+    dX/dY at the origin is -0.1 (the same sign as dv/dx) and LIENG-1's nine trajectories all come closer to
+    it (to 0.26 of their start), with a U.L.C. (36.67 mm) inside the S.L.C.; the unstable deck's is +0.205,
+    its trajectories all move out to the S.L.C. (25.53 mm) and there is no U.L.C."""
+    from studies.triggering import slope_at_origin
+
+    out = {}
+    for name in ("fig2_23_stable", "fig2_23_unstable"):
+        d = read_deck(CARDS / "figures" / f"{name}.dat", program="lieng1")
+        x, y = np.asarray(d.xchl[:d.n]), np.asarray(d.ychl[:d.n])
+        fc = cycles.find_cycles(x, y)
+        r = d.run()
+        rad = np.hypot(np.asarray(r.x) - cycles.equilibrium(x, y), np.asarray(r.y))
+        out[name] = (fc.origin_stable, round(slope_at_origin(x, y), 3), [c.kind for c in fc.cycles],
+                     bool(np.all(rad[:, -1] < 0.3 * rad[:, 0])), bool(np.all(rad[:, -1] > 5 * rad[:, 0])))
+    assert out == {"fig2_23_stable": (True, -0.1, ["unstable", "stable"], True, False),
+                   "fig2_23_unstable": (False, 0.205, ["stable"], False, True)}
