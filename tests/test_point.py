@@ -117,3 +117,30 @@ def test_fast_mode_agrees_with_listing_arithmetic():
     scale = np.abs(a.x).max()
     np.testing.assert_allclose(b.x, a.x, rtol=1e-10, atol=1e-10 * scale)
     np.testing.assert_allclose(b.y, a.y, rtol=1e-10, atol=1e-10 * scale)
+
+
+def test_the_fast_loop_takes_the_steps_of_the_fast_mode():
+    """point_advance's mode_fast loop (a band hunt and XB = A + B*Y, for speed) ends where LIENG-1's
+    mode_fast trajectory (point_step, the listing's interpolation) ends, and where the listing's trig
+    arithmetic ends, to rounding; status and step of a failure as point_step reports them."""
+    from lieng import _core
+
+    x, y = thesis_characteristic()
+    for x0, y0 in ((8.0, 1.0), (-3.0, 25.0), (40.0, -30.0)):
+        ref = lieng.lieng1(x, y, x0, y0, 0.01, ntraj=1, npts=3000, lookup="fast")
+        trig = lieng.lieng1(x, y, x0, y0, 0.01, ntraj=1, npts=3000, lookup="bisect")
+        xs, ys, ts = np.array(x0), np.array(y0), np.array(0.0)
+        status, where = _core.core_advance(x, y, 0.01, 2999, 2, xs, ys, ts)
+        assert status == 0 and where == 0
+        scale = np.abs(ref.x[0]).max()
+        for got, a, b in ((xs, ref.x[0][-1], trig.x[0][-1]), (ys, ref.y[0][-1], trig.y[0][-1])):
+            assert float(got) == pytest.approx(a, abs=1e-12 * scale)
+            assert float(got) == pytest.approx(b, abs=1e-10 * scale)
+        tb = np.array(0.0)
+        assert _core.core_advance(x, y, 0.01, 2999, 1, np.array(x0), np.array(y0), tb)[0] == 0
+        assert float(ts) == pytest.approx(float(tb), rel=1e-9)         # T before the time correction
+    # the singular point: at the equilibrium on the first step
+    xe = lieng.cycles.equilibrium(x, y)
+    status, where = _core.core_advance(x, y, 0.01, 10, 2, np.array(xe), np.array(0.0), np.array(0.0))
+    s1, w1 = _core.core_advance(x, y, 0.01, 10, 1, np.array(xe), np.array(0.0), np.array(0.0))
+    assert (status, where) == (s1, w1) and status != 0 and where == 1
