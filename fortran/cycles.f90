@@ -119,7 +119,7 @@ contains
       real(wp), intent(inout) :: y             !< Y, advanced
       real(wp), intent(inout) :: t             !< T, advanced
       integer, intent(out) :: status           !< st_ok or st_no_return
-      integer :: j, k, ev, it
+      integer :: j, k, ev, nev
       real(wp) :: a, b, ylo, yhi, u0, y0, ta, tb, tm, u, yy, ua, ya, t0, ymove, yref, hb
       logical :: hit
 
@@ -128,7 +128,11 @@ contains
       ymove = -(x - xb_of(n, xchl, ychl, y))
       j = band_of(n, ychl, y, merge(1, -1, ymove > 0.0_wp))
       t0 = t
+      nev = 0
       do while (t - t0 < tmax)
+         ! a guard: a motion that stops advancing in time is not followed forever
+         nev = nev + 1
+         if (nev > 10000000) exit
          call band_line(n, xchl, ychl, j, a, b, ylo, yhi)
          u0 = x - a
          y0 = y
@@ -158,19 +162,18 @@ contains
             status = st_no_return
             return
          end if
-         ! bisection for the first event in (ta, tb]
-         do it = 1, 200
-            tm = 0.5_wp*(ta + tb)
-            if (tm <= ta .or. tm >= tb) exit
-            call linear_flow(b, u0, y0, tm, ua, ya)
-            call classify(ya, yref, k)
-            if (k /= 0) then
-               tb = tm
-               ev = k
-            else
-               ta = tm
-            end if
-         end do
+         ! the first event in (ta, tb]: each level crossed between the two
+         ! samples is located by the Illinois method on y(t) - level (a few
+         ! evaluations of the closed form, where bisection took ~50); the
+         ! earliest crossing wins
+         tm = tb
+         k = 0
+         if (ydir < 0 .and. yref > 0.0_wp .and. yy <= 0.0_wp) call earliest(1, 0.0_wp, tm, k)
+         if (ydir > 0 .and. yref < 0.0_wp .and. yy >= 0.0_wp) call earliest(1, 0.0_wp, tm, k)
+         if (yy > yhi) call earliest(2, yhi, tm, k)
+         if (yy < ylo) call earliest(3, ylo, tm, k)
+         ev = k
+         tb = tm
          call linear_flow(b, u0, y0, tb, u, yy)
          t = t + tb
          x = u + a
@@ -190,6 +193,21 @@ contains
 
    contains
 
+      !> Locate the crossing of ``level`` (event e) in (ta, tb] and keep it
+      !> in (tm, k) if it is the earliest so far.
+      pure subroutine earliest(e, level, tm, k)
+         integer, intent(in) :: e
+         real(wp), intent(in) :: level
+         real(wp), intent(inout) :: tm
+         integer, intent(inout) :: k
+         real(wp) :: tr
+         tr = illinois(b, u0, y0, level, ta, tb, yref - level, yy - level)
+         if (k == 0 .or. tr < tm) then
+            tm = tr
+            k = e
+         end if
+      end subroutine earliest
+
       !> The first event between the sample yr (no event) and yv: 1 the
       !> abscissa in direction ydir, 2 above the band, 3 below it.
       pure subroutine classify(yv, yr, e)
@@ -203,6 +221,60 @@ contains
       end subroutine classify
 
    end subroutine flow_exact
+
+   !> The root of y(t) - level in [t1, t2] on the band's closed form, by the
+   !> Illinois variant of regula falsi (g1 = y(t1) - level and g2 = y(t2) -
+   !> level of opposite signs, or g2 = 0), to the resolution of t.
+   pure function illinois(b, u0, y0, level, t1, t2, g1, g2) result(tr)
+      real(wp), intent(in) :: b                !< the band's slope dX/dY
+      real(wp), intent(in) :: u0, y0           !< the band's start (u = X - A, Y)
+      real(wp), intent(in) :: level            !< the level of Y sought
+      real(wp), intent(in) :: t1, t2           !< the bracket (no event at t1)
+      real(wp), intent(in) :: g1, g2           !< Y - level at t1 and t2
+      real(wp) :: tr                           !< the crossing time
+      real(wp) :: ta, tb, fa, fb, tc, fc, u, y
+      integer :: it
+      ta = t1; tb = t2; fa = g1; fb = g2
+      tr = tb
+      if (fb == 0.0_wp) return
+      if (fa == 0.0_wp) then
+         ! on the level at t1 (a band entered at its limit) and leaving it:
+         ! the first time Y - level is seen beyond it, by bisection, so that
+         ! the motion advances (a root at t1 itself would leave it in place)
+         do it = 1, 200
+            tc = 0.5_wp*(ta + tb)
+            if (tc <= ta .or. tc >= tb) exit
+            call linear_flow(b, u0, y0, tc, u, y)
+            if ((y - level)*g2 > 0.0_wp) then
+               tb = tc
+            else
+               ta = tc
+            end if
+         end do
+         tr = tb
+         return
+      end if
+      do it = 1, 100
+         tc = (ta*fb - tb*fa)/(fb - fa)
+         if (.not. (tc > min(ta, tb) .and. tc < max(ta, tb))) exit
+         call linear_flow(b, u0, y0, tc, u, y)
+         fc = y - level
+         if (fc == 0.0_wp) then
+            tb = tc; fb = fc
+            exit
+         end if
+         if (sign(1.0_wp, fc) /= sign(1.0_wp, fb)) then
+            ta = tb; fa = fb
+         else
+            fa = 0.5_wp*fa
+         end if
+         tb = tc; fb = fc
+         if (abs(tb - ta) <= 4.0_wp*epsilon(1.0_wp)*max(abs(ta), abs(tb))) exit
+      end do
+      ! the latest estimate: the bracket has shrunk to it, or the next secant
+      ! step no longer moves it (Y is set to the level by the caller)
+      tr = tb
+   end function illinois
 
    pure function xb_of(n, xchl, ychl, y) result(xb)
       integer, intent(in) :: n
