@@ -9,10 +9,10 @@
 !> live in lienard_core; card input, the line-printer listing and the plots
 !> are done by the Python layer.
 module lieng1
-   use lienard_core, only: wp, point_step, st_ok, st_bad_size
+   use lienard_core, only: wp, point_step, st_ok, st_bad_size, mode_fast
    implicit none
    private
-   public :: lieng1_trajectory, lieng1_portrait, time_correction
+   public :: lieng1_trajectory, lieng1_portrait, time_correction, time_correction_fast
 
    !> AA = 1.1*A: a time increment more than 10 % above the mean of the four
    !> before it is corrected (reading of the OCR "AA=/,1 *A", see RESTORATION.md).
@@ -63,7 +63,11 @@ contains
             return
          end if
       end do
-      call time_correction(npts, y, t)
+      if (lookup == mode_fast) then
+         call time_correction_fast(npts, y, t)
+      else
+         call time_correction(npts, y, t)
+      end if
    end subroutine lieng1_trajectory
 
    !> The near-abscissa time correction, DO 140 J=6,NPTS of the main program.
@@ -96,6 +100,31 @@ contains
          end if
       end do
    end subroutine time_correction
+
+   !> The same correction in O(NPTS), for mode_fast: the excesses D are summed
+   !> as they are found and subtracted from each later time once, where the
+   !> listing subtracts each D from every later time in turn (O(NPTS) per
+   !> correction).  The same times to rounding (the order of the subtractions
+   !> differs); mode_fast is not bit-identical to the listing anyway.
+   pure subroutine time_correction_fast(npts, y, t)
+      integer, intent(in) :: npts              !< number of points
+      real(wp), intent(in) :: y(npts)          !< velocities Y(1..NPTS)
+      real(wp), intent(inout) :: t(npts)       !< times T(1..NPTS), corrected in place
+      integer :: j
+      real(wp) :: a, xco, shift
+
+      shift = 0.0_wp                           ! the sum of the excesses found so far
+      do j = 6, npts
+         t(j) = t(j) - shift                   ! T(J-5..J-1) are final; T(J) now as the listing has it
+         a = ((t(j - 4) - t(j - 5)) + (t(j - 3) - t(j - 4)) + (t(j - 2) - t(j - 3)) &
+              + (t(j - 1) - t(j - 2)))/4.0_wp
+         xco = t(j) - t(j - 1)
+         if (abs(y(j - 1)) < tcorr_band .and. xco > tcorr_factor*a) then
+            shift = shift + (xco - a)
+            t(j) = t(j - 1) + a
+         end if
+      end do
+   end subroutine time_correction_fast
 
    !> The phase portrait: NTRAJ trajectories (9 in the listing), the k-th
    !> starting where the (k-1)-th started less (XINCR, YINCR).

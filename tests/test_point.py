@@ -117,6 +117,10 @@ def test_fast_mode_agrees_with_listing_arithmetic():
     scale = np.abs(a.x).max()
     np.testing.assert_allclose(b.x, a.x, rtol=1e-10, atol=1e-10 * scale)
     np.testing.assert_allclose(b.y, a.y, rtol=1e-10, atol=1e-10 * scale)
+    # the O(NPTS) time correction of the fast mode gives the listing's corrected times to rounding
+    assert np.count_nonzero(np.diff(a.t, axis=1) != np.diff(lieng.lieng1(x, y, 8.0, 1.0, 0.01, yincr=-3.0,
+                            lookup="listing").t, axis=1)) == 0
+    np.testing.assert_allclose(b.t, a.t, rtol=1e-10, atol=1e-12)
 
 
 def test_the_fast_loop_takes_the_steps_of_the_fast_mode():

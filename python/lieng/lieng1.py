@@ -173,7 +173,9 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
         The POINT step: "listing" (default) is the 1971 arithmetic;
         "bisect" finds the segment by bisection (bit-identical, faster for
         large N); "fast" adds DX = DTHETA*|Y|, DY = DTHETA*|XK| in place of
-        DS*|SIN(ATAN(Y/XK))|, DS*|COS(...)| (equal in exact arithmetic).
+        DS*|SIN(ATAN(Y/XK))|, DS*|COS(...)| (equal in exact arithmetic),
+        and corrects the times in O(npts) (the excesses summed, not
+        subtracted from every later time in turn: equal to rounding).
 
     Returns
     -------
