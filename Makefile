@@ -23,7 +23,7 @@ gfortran:
 $(VENV)/.deps: Makefile | gfortran
 	$(PYTHON) -m venv $(VENV)
 	$(VPIP) install -q --upgrade pip
-	$(VPIP) install -q "meson-python>=0.15" "meson>=1.1" ninja "numpy>=2.0" "scipy>=1.10" "matplotlib>=3.7" "pytest>=7" "hypothesis>=6.100"
+	$(VPIP) install -q "meson-python>=0.15" "meson>=1.1" ninja "numpy>=2.0" "scipy>=1.10" "matplotlib>=3.7" "pytest>=7" "hypothesis>=6.100" "dask[distributed]>=2024.1"
 	touch $@
 
 venv: $(VENV)/.deps
@@ -55,6 +55,7 @@ bench: install
 	$(VPY) tests/benchmarks/bench_sweep.py
 	$(VPY) tests/benchmarks/bench_twodof.py
 	$(VPY) tests/benchmarks/bench_diagnose_scale.py
+	$(VPY) tests/benchmarks/bench_map.py
 
 bench-diagnose: install
 	$(VPY) tests/benchmarks/bench_diagnose.py --seeds 8

@@ -13,6 +13,7 @@ import math
 import os
 import re
 import sys
+import warnings
 from pathlib import Path
 
 from .errors import LiengInputError
@@ -44,11 +45,11 @@ def _reject_inapplicable(args) -> None:
                               f"POINT step)")
 
 
-def _plots(name, res, outdir) -> list:
+def _plots(name, res, outdir, *more):
     """A program's plots (matplotlib is imported only when plots are asked for)."""
     from . import graf
 
-    return getattr(graf, name)(res, outdir)
+    return getattr(graf, name)(res, outdir, *more)
 
 
 def _run_lieng1(args) -> int:
@@ -221,32 +222,183 @@ def _sweep(args) -> int:
     return 0
 
 
-def _diagnose(args) -> int:
+def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None, progress=None):
+    """Read one record (a table, or a TRC deck whose OMNH gives fn) and
+    diagnose it: what ``lieng diagnose RECORD`` computes (also a task of
+    ``diagnose --batch``).  Returns the :class:`lieng.diagnose.Diagnosis`."""
     from .diagnose import diagnose, read_record, record_from_trc_deck
-    from .diagnose.report import summary_lines, write_outputs
-    from .outputs import check_outdir, dumps_json, staged_outdir
 
-    check_outdir(args.outdir, args.force)
-    fn = args.fn
-    if _is_table(args.data):
-        rec = read_record(args.data, v0=args.v0, stiffness=args.stiffness)
+    if _is_table(data):
+        rec = read_record(data, v0=v0, stiffness=stiffness)
     else:                                   # a thesis-style TRC deck: OMNH gives fn
-        rec, fn_deck = record_from_trc_deck(args.data, args.v0)
+        rec, fn_deck = record_from_trc_deck(data, v0)
         fn = fn_deck if fn is None else fn
+    extra = {} if fn_uncertainty is None else {"fn_uncertainty": fn_uncertainty}
+    return diagnose(rec, fn, progress=progress, **extra)
+
+
+def _write_diagnosis(d, outdir, force: bool, source: str, plots: bool) -> list:
+    """diagnosis.json, report.md and the plots of one record, written into
+    ``outdir`` all at once; returns the names written."""
+    from .diagnose.report import write_outputs
+    from .outputs import staged_outdir
+
+    with staged_outdir(outdir, force) as tmp:
+        names = write_outputs(d, tmp, source, plots=plots)
+    return names
+
+
+def _diagnose(args) -> int:
+    from .diagnose.report import summary_lines
+    from .outputs import check_outdir, dumps_json
+
+    if args.batch is not None:
+        return _diagnose_batch(args)
+    if args.data is None:
+        raise LiengInputError("diagnose: give a RECORD to diagnose, or --batch DIR")
+    for opt, val in (("--workers", args.workers), ("--scheduler", args.scheduler)):
+        if val is not None:
+            raise LiengInputError(f"{opt}: applies with --batch DIR only (one record is diagnosed in this process)")
+    check_outdir(args.outdir, args.force)
     progress = None
     if sys.stderr.isatty() and not args.quiet:
         def progress(k, n):
             print(f"\rcalibrating against the baseline: replicate {k}/{n}", end="" if k < n else "\n",
                   file=sys.stderr, flush=True)
-    extra = {} if args.fn_uncertainty is None else {"fn_uncertainty": args.fn_uncertainty}
-    d = diagnose(rec, fn, progress=progress, **extra)
-    with staged_outdir(args.outdir, args.force) as tmp:
-        names = write_outputs(d, tmp, str(args.data), plots=not args.no_plots)
+    d = _diagnose_record(args.data, args.fn, args.v0, args.stiffness, args.fn_uncertainty, progress)
+    names = _write_diagnosis(d, args.outdir, args.force, str(args.data), not args.no_plots)
     if args.json:
         print(dumps_json(d.to_json(), indent=2))
     elif not args.quiet:
         print("\n".join(summary_lines(d, str(args.data))))
         print(f"wrote {Path(args.outdir) / names[0]}, " + ", ".join(names[1:]))
+    return 0
+
+
+#: the records ``diagnose --batch DIR`` reads: the files of DIR with these suffixes
+BATCH_SUFFIXES = (".csv", ".txt", ".dat")
+#: the columns of ``diagnose --batch``'s batch.csv
+BATCH_COLUMNS = ("record", "outdir", "status", "effect", "effects_named", "gain", "cycles", "error")
+
+
+def _batch_records(folder) -> list:
+    """The records of ``--batch DIR``: its entries named *.csv, *.txt, *.dat
+    (not hidden, not directories), sorted; refused when there are none or two
+    would write the same OUTDIR/<stem>/."""
+    p = Path(folder)
+    try:
+        entries = sorted(os.listdir(p))
+    except NotADirectoryError:
+        raise LiengInputError(f"--batch {folder}: not a directory") from None
+    except FileNotFoundError:
+        raise LiengInputError(f"--batch {folder}: no such directory") from None
+    except OSError as exc:
+        raise LiengInputError(f"--batch {folder}: cannot be read ({exc.strerror})") from None
+    recs = [p / e for e in entries if not e.startswith(".") and Path(e).suffix.lower() in BATCH_SUFFIXES
+            and not (p / e).is_dir()]
+    if not recs:
+        raise LiengInputError(f"--batch {folder}: no record in it (files named *.csv, *.txt or *.dat)")
+    seen = {}
+    for r in recs:
+        if r.stem in seen:
+            raise LiengInputError(f"--batch {folder}: {seen[r.stem].name} and {r.name} would both be written to "
+                                  f"OUTDIR/{r.stem}/: rename one")
+        seen[r.stem] = r
+    return recs
+
+
+def _diagnose_batch(args) -> int:
+    """``diagnose --batch DIR``: every record through the executor, each
+    written to OUTDIR/<stem>/ as one ``lieng diagnose`` writes it, and
+    OUTDIR/batch.csv; status 1 when a record failed."""
+    from .cycles import _progress
+    from .diagnose.report import summary_lines
+    from .executor import check_workers, open_executor, run_tasks
+    from .outputs import check_outdir, staged_outdir, write_csv
+
+    if args.data is not None:
+        raise LiengInputError(f"--batch {args.batch} and {args.data}: give one record or --batch DIR, not both")
+    if args.json:
+        raise LiengInputError("--json: not with --batch (each record's diagnosis.json is in OUTDIR/<record>/)")
+    check_workers(args.workers, args.scheduler)
+    check_outdir(args.outdir, args.force)
+    recs = _batch_records(args.batch)
+    show = sys.stderr.isatty() and not args.quiet
+    tasks = [(str(r), args.fn, args.v0, args.stiffness, args.fn_uncertainty) for r in recs]
+    rows, lines, errors = [None] * len(recs), [None] * len(recs), []
+    with staged_outdir(args.outdir, args.force, keep=[r.stem for r in recs]) as tmp:
+        with open_executor(args.workers, args.scheduler, tasks=len(recs)) as ex:
+            for k, d, msgs, err in run_tasks(ex, _diagnose_record, tasks, catch=True,
+                                             on_done=lambda i, n: _progress(i, n, "diagnose --batch", show)):
+                for m in msgs:                  # printed after a batch that succeeds, as for one record
+                    warnings.warn(f"{recs[k]}: {m}", stacklevel=2)
+                if err is None:
+                    try:
+                        _write_diagnosis(d, Path(args.outdir) / recs[k].stem, args.force, str(recs[k]),
+                                         not args.no_plots)
+                    except (LiengInputError, OSError, ValueError) as exc:
+                        err = f"writing its outputs: {' '.join(str(exc).split())}"
+                if err is None:
+                    rows[k] = (recs[k].name, recs[k].stem, "ok", d.effect,
+                               ";".join(e["effect"] for e in d.effects), float(d.gain), int(d.n_cycles), None)
+                    lines[k] = summary_lines(d, str(recs[k]))[0]
+                else:
+                    err = err if err.startswith(str(recs[k])) else f"{recs[k]}: {err}"
+                    rows[k] = (recs[k].name, None, "error", None, None, None, None, err)
+                    lines[k] = f"{recs[k]}: error"
+                    errors.append((k, err))
+        write_csv(tmp / "batch.csv", BATCH_COLUMNS, rows)
+    for _, err in sorted(errors):
+        print(f"lieng: error: {err}", file=sys.stderr)
+    if not args.quiet:
+        print("\n".join(lines))
+        print(f"wrote {Path(args.outdir) / 'batch.csv'} and {len(recs) - len(errors)} record director"
+              f"{'y' if len(recs) - len(errors) == 1 else 'ies'} ({Path(args.outdir)}/<record>/)"
+              + (f"; {len(errors)} of {len(recs)} records failed" if errors else ""))
+    return 1 if errors else 0
+
+
+def _map(args) -> int:
+    from .cycles import parse_range
+    from .executor import check_workers, open_executor
+    from .outputs import check_outdir, dumps_json, staged_outdir, write_csv
+    from .regime_map import AXES, REGIMES, check_grid, regime_map
+
+    check_outdir(args.outdir, args.force)
+    check_workers(args.workers, args.scheduler)
+    axis, opt, text = ("dmu", "--dmu", args.dmu) if args.dmu is not None else ("slope", "--slope", args.slope)
+    v0s, vals = parse_range(args.v0, "--v0"), parse_range(text, opt)
+    deck, x, y = _deck_char(args)
+    v0s, vals = check_grid(x, y, v0s, axis, vals, "--v0", opt)
+    with open_executor(args.workers, args.scheduler, tasks=len(vals)) as ex:
+        res = regime_map(x, y, v0s, **{f"{axis}s": vals}, mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup,
+                         executor=ex)
+    col = AXES[axis][0]
+    with staged_outdir(args.outdir, args.force) as tmp:
+        write_csv(tmp / "map.csv", ["v0 [mm/s]", col, "regime", "regime_name", "table_2_iv_row", "origin",
+                                    "slc_amplitude [mm]", "ulc_amplitude [mm]", "cycles"],
+                  ((v, p, code, r.key, r.row, "stable" if o else "unstable", s, u, n)
+                   for v, p, code, r, o, s, u, n in res.points()))
+        write_csv(tmp / "v_oc.csv", [col, "v_oc [mm/s]"],
+                  ((float(a), None if math.isnan(b) else float(b)) for a, b in zip(res.values, res.v_oc)))
+        plots = [] if args.no_plots else [_plots("regime_map_plot", res, tmp, Path(args.deck).name)]
+    if args.json:
+        print(dumps_json(res.summary(), indent=2))
+    elif not args.quiet:
+        counts = res.counts()
+        print(f"map {args.deck}: regimes of Table 2.IV at {res.v0.size} x {res.values.size} points (v0 {res.v0[0]:.6g} to {res.v0[-1]:.6g} "
+              f"mm/s; {col} {res.values[0]:.6g} to {res.values[-1]:.6g}), mode {res.mode}")
+        for r in REGIMES:
+            if counts[r.key] or r.code < 4:
+                print(f"  {r.label:<40}{counts[r.key]:>8} points")
+        found = [(a, b) for a, b in zip(res.values, res.v_oc) if not math.isnan(b)]
+        if found:
+            print(f"v_oc (S.L.C. and U.L.C. merge) at {len(found)} of {res.values.size} values: "
+                  + ", ".join(f"{b:.6g} mm/s at {a:.6g}" for a, b in (found if len(found) <= 3
+                                                                       else [found[0], found[-1]])))
+        else:
+            print("v_oc (S.L.C. and U.L.C. merge): not in the range")
+        print(f"wrote {Path(args.outdir) / 'map.csv'}, v_oc.csv" + "".join(f", {p.name}" for p in plots))
     return 0
 
 
@@ -434,6 +586,26 @@ def build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--v0", metavar="START:STOP:N", help="driving velocities (mm/s)")
     sw.add_argument("--dmu", metavar="START:STOP:N", help="factors of the deck's dmu0 (1 = the deck)")
     w.add_argument("--at-v0", type=float, metavar="V", help="with --dmu: the driving velocity (default: the deck's)")
+    mp = sub.add_parser("map", help="the regime of Table 2.IV over a grid of (v0, dmu0) or (v0, slope), with "
+                        "v_oc traced", description="The deck's characteristic with its static peak dmu0 scaled "
+                        "(--dmu, as lieng sweep --dmu) or its rising part's slope set (--slope), moved to each "
+                        "driving velocity as TIMDIS moves it; at each point the regime of Table 2.IV (no motion, "
+                        "no self-sustained oscillation, self-excited, depends on the trigger, metastable) from "
+                        "the limit cycles, and along each row v_oc, where the S.L.C. and U.L.C. merge. Writes "
+                        "map.csv, v_oc.csv and map.png.")
+    deck_args(mp)
+    mp.add_argument("--v0", metavar="START:STOP:N", required=True, help="driving velocities (mm/s)")
+    ma = mp.add_mutually_exclusive_group(required=True)
+    ma.add_argument("--dmu", metavar="START:STOP:N", help="factors on the characteristic's static peak dmu0 = "
+                    "mu_s - mu_k0 (1 = the deck)")
+    ma.add_argument("--slope", metavar="START:STOP:N", help="slopes of the rising part beyond the kinetic minimum, "
+                    "d|X - XMDL|/d|Y - YMDL| (mm per mm/s; positive)")
+    _executor_options(mp, "")
+    mp.add_argument("-o", "--outdir", required=True, help="output directory")
+    mp.add_argument("--force", action="store_true", help=FORCE_HELP)
+    mp.add_argument("--no-plots", action="store_true", help="write map.csv and v_oc.csv only")
+    _plot_options(mp)
+    mp.add_argument("-q", "--quiet", action="store_true", help="print nothing (errors still go to stderr)")
     dg = sub.add_parser("diagnose", help="what the 1-DoF model gets wrong on a measured record, and why",
                         description="Fit the thesis's 1-DoF model (a single-valued characteristic of general "
                                     "shape, constant load and drive) to a measured stick-slip record, test each "
@@ -442,7 +614,7 @@ def build_parser() -> argparse.ArgumentParser:
                                     "measure its gain on held-out cycles (the record's last 30 percent with "
                                     "models fitted on its first 70, and its first 30 with models fitted on "
                                     "its last 70).")
-    dg.add_argument("data", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
+    dg.add_argument("data", nargs="?", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
                     "the header ('F [mN]', 'time/s', 'Time (s)', or a row of units; comma, semicolon, TAB or whitespace, a "
                     "decimal comma, '#' comments; rows with a missing value left out), or a TRC deck")
     dg.add_argument("--v0", type=float, metavar="MM_S",
@@ -454,6 +626,10 @@ def build_parser() -> argparse.ArgumentParser:
                          "least favourable fn within it: an fn measured to 0.01 lets smaller twin branches through")
     dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record; estimated from the sticks when not given")
+    dg.add_argument("--batch", metavar="DIR", help="diagnose every record in DIR (*.csv, *.txt, *.dat; the options "
+                    "above apply to each) into OUTDIR/<record>/, with a summary in OUTDIR/batch.csv; status 1 when "
+                    "a record failed (the others are still written)")
+    _executor_options(dg, "with --batch: ")
     dg.add_argument("-o", "--outdir", required=True, help="output directory")
     dg.add_argument("--force", action="store_true", help=FORCE_HELP)
     dg.add_argument("--json", action="store_true", help="print diagnosis.json")
@@ -531,6 +707,14 @@ def main(argv=None) -> int:
     return code
 
 
+def _executor_options(p, when: str) -> None:
+    """--workers and --scheduler of a command whose tasks run on an executor (lieng.executor)."""
+    p.add_argument("--workers", type=int, metavar="N", help=f"{when}local worker processes (default: one per "
+                   f"processor; 1 runs in this process)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help=f"{when}run the tasks on a Dask cluster, e.g. "
+                   f"tcp://127.0.0.1:8786 (pip install 'lieng[dask]')")
+
+
 def _plot_options(p) -> None:
     """--format and --dpi of a command that writes plots."""
     p.add_argument("--format", choices=PLOT_FORMATS, default=None,
@@ -546,7 +730,7 @@ def _dispatch(parser, args) -> int:
         if args.command == "run":
             _reject_inapplicable(args)
             return {"lieng1": _run_lieng1, "mlien": _run_mlien, "trc": _run_trc}[args.program](args)
-        handlers = {"cycles": _cycles, "sweep": _sweep, "diagnose": _diagnose, "synth": _synth,
+        handlers = {"cycles": _cycles, "sweep": _sweep, "map": _map, "diagnose": _diagnose, "synth": _synth,
                     "figures": _figures, "twodof": _twodof}
         if args.command not in handlers:
             parser.error(f"unknown command {args.command}")  # pragma: no cover

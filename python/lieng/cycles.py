@@ -40,7 +40,7 @@ from .errors import LiengInputError
 from .lieng1 import lookup_code
 
 __all__ = ["Cycle", "CyclesResult", "return_map", "find_cycles", "move_to_v0", "scale_static_peak",
-           "sweep_v0", "sweep_dmu", "SweepResult"]
+           "set_rising_slope", "stick_part", "sweep_v0", "sweep_dmu", "SweepResult", "first_critical", "merged"]
 
 MODES = ("exact", "faithful")
 
@@ -241,6 +241,37 @@ def move_to_v0(xchl, ychl, v0: float):
     return xs, ys
 
 
+def _kinetic_sides(x, y):
+    """The static peak and the kinetic minimum on each side of the centre of
+    symmetry of a checked characteristic.
+
+    Returns
+    -------
+    centre : Centre
+    sides : list of (ndarray, int, int)
+        Per side that has a static peak: the side's indices from the centre
+        outwards, the position ``p`` (in that order) of the static peak, the
+        first local maximum of |X - XMDL|, and the position ``m`` of the
+        kinetic minimum after it, the lowest |X - XMDL| before it rises
+        again (the side's last point when it never rises).
+    """
+    c = centre_of_symmetry(x, y)
+    dx = np.abs(x - c.xmdl)
+    sides = []
+    for side in (np.flatnonzero(y < c.ymdl), np.flatnonzero(y > c.ymdl)[::-1]):
+        if side.size < 2:
+            continue
+        a = dx[side]                              # from the centre outwards
+        fall = np.flatnonzero(np.diff(a) < 0)
+        if fall.size == 0:
+            continue                              # no static peak on this side
+        p = int(fall[0])                          # the static peak: the first local maximum
+        rise = np.flatnonzero(np.diff(a[p:]) > 0)
+        m = p + (int(rise[0]) if rise.size else a.size - 1 - p)   # the kinetic minimum after it
+        sides.append((side, p, m))
+    return c, sides
+
+
 def scale_static_peak(xchl, ychl, factor: float):
     """The characteristic with its static peak scaled (Fig. 2.28).
 
@@ -250,24 +281,80 @@ def scale_static_peak(xchl, ychl, factor: float):
     by ``factor``; the line beyond the minimum (the rising part) is left as
     it is.  So dmu0 = mu_s - mu_k0 scales by ``factor`` and mu_k0 stays."""
     x, y = check_characteristic(xchl, ychl)
-    c = centre_of_symmetry(x, y)
+    c, sides = _kinetic_sides(x, y)
     dx = x - c.xmdl
     xs = x.copy()
-    for side in (np.flatnonzero(y < c.ymdl), np.flatnonzero(y > c.ymdl)[::-1]):
-        if side.size < 2:
-            continue
-        a = np.abs(dx[side])                      # from the centre outwards
-        fall = np.flatnonzero(np.diff(a) < 0)
-        if fall.size == 0:
-            continue                              # no static peak on this side
-        p = int(fall[0])                          # the static peak: the first local maximum
-        rise = np.flatnonzero(np.diff(a[p:]) > 0)
-        m = p + (int(rise[0]) if rise.size else a.size - 1 - p)   # the kinetic minimum after it
-        kin = a[m]
+    for side, p, m in sides:
+        kin = abs(dx[side[m]])
         inner = side[:m]
         over = inner[np.abs(dx[inner]) > kin]
         xs[over] = c.xmdl + np.sign(dx[over]) * (kin + factor * (np.abs(dx[over]) - kin))
     return xs, y
+
+
+def set_rising_slope(xchl, ychl, slope: float):
+    """The characteristic with the slope of its rising part set to ``slope``.
+
+    On each side of the centre of symmetry, beyond the kinetic minimum
+    (mu_k0, the lowest |X - XMDL| after the static peak: see
+    :func:`scale_static_peak`), the rising part is replaced by the straight
+    line |X - XMDL| = |X_m - XMDL| + slope * |Y - Y_m| from the minimum
+    (X_m, Y_m), at the characteristic's own velocities.  ``slope`` is
+    d|X - XMDL| / d|Y - YMDL| in the characteristic's units (mm per mm/s):
+    the damping of the rising part (Fig. 2.21's c).  The static peak, the
+    falling part and the centre's velocity YMDL stay as they are; a side
+    without a rising part (its minimum is its last point) is unchanged.
+
+    Raises
+    ------
+    LiengInputError
+        ``slope`` not a positive finite number, no side with a rising part,
+        or a slope so steep that the centre-of-symmetry search would find
+        another centre (so that v0 would no longer be measured from YMDL).
+    """
+    x, y = check_characteristic(xchl, ychl)
+    if not (math.isfinite(slope) and slope > 0):
+        raise LiengInputError(f"the rising part's slope must be a positive number (mm per mm/s), not {slope:g}")
+    c, sides = _kinetic_sides(x, y)
+    dx = x - c.xmdl
+    xs = x.copy()
+    rising = 0
+    for side, p, m in sides:
+        beyond = side[m + 1:]
+        rising += beyond.size
+        kin = abs(dx[side[m]])
+        xs[beyond] = c.xmdl + np.sign(dx[beyond]) * (kin + slope * np.abs(y[beyond] - y[side[m]]))
+    if rising == 0:
+        raise LiengInputError("the characteristic has no rising part beyond a kinetic minimum: its slope cannot be "
+                              "set")
+    moved = centre_of_symmetry(xs, y)
+    if not abs(moved.ymdl - c.ymdl) <= 1e-9 * max(1.0, abs(c.ymdl)):
+        raise LiengInputError(f"a rising part of slope {slope:g} moves the centre of symmetry from YMDL = "
+                              f"{c.ymdl:g} to {moved.ymdl:g} (the centre search takes it for the stick part)")
+    return xs, y
+
+
+def stick_part(xchl, ychl):
+    """The driving velocities for which the origin lies on the stick part.
+
+    The stick part runs between the two static peaks (:func:`scale_static_peak`);
+    moved to v0 (:func:`move_to_v0`: the centre of symmetry to velocity
+    v0), the characteristic has the origin on it when YMDL - y_upper < v0 <
+    YMDL - y_lower, with y_upper, y_lower the peaks' velocities: Table
+    2.IV's -vr < v0 < vr.  The interval does not change when the
+    characteristic is moved.
+
+    Returns
+    -------
+    (float, float) or None
+        The interval's ends, or None when a side has no static peak.
+    """
+    x, y = check_characteristic(xchl, ychl)
+    c, sides = _kinetic_sides(x, y)
+    if len(sides) < 2:
+        return None
+    (lo, plo, _), (hi, phi, _) = sides
+    return float(c.ymdl - y[hi[phi]]), float(c.ymdl - y[lo[plo]])
 
 
 @dataclass
@@ -313,24 +400,57 @@ def _sweep(values, move, label, critical, mode, dtheta, lookup, progress, find_c
     for i, val in enumerate(values):
         res.append(find_cycles(*move(val), mode, dtheta, lookup, **kw))
         _progress(i + 1, len(values), label, progress)
-    crit = None
-    if find_critical:
-        for k in range(len(values) - 1):
-            if critical(res[k], res[k + 1]):
-                lo, hi = values[k], values[k + 1]
-                has_lo = res[k].stable_amplitude is not None
-                for _ in range(40):
-                    mid = 0.5 * (lo + hi)
-                    if (find_cycles(*move(mid), mode, dtheta, lookup, **kw).stable_amplitude is not None) == has_lo:
-                        lo = mid
-                    else:
-                        hi = mid
-                    if abs(hi - lo) < 1e-6 * max(1.0, abs(hi)):
-                        break
-                crit = 0.5 * (lo + hi)
-                break
+    crit = first_critical(values, res, move, critical, mode, dtheta, lookup, **kw) if find_critical else None
     return SweepResult(values, [r.origin_stable for r in res], [r.stable_amplitude for r in res],
                        [r.unstable_amplitude for r in res], crit, mode, param)
+
+
+def first_critical(values, results, move, critical, mode: str = "exact", dtheta=None, lookup: str = "listing",
+                   **kw):
+    """The first critical value of a sweep, refined by bisection.
+
+    Parameters
+    ----------
+    values : sequence of float
+        The values swept, in order.
+    results : sequence of CyclesResult
+        :func:`find_cycles` of ``move(value)`` for each value.
+    move : callable
+        value -> (xchl, ychl), the characteristic at that value.
+    critical : callable
+        ``critical(results[k], results[k + 1])``: the regime changes between
+        the two (e.g. :func:`merged`).
+    mode, dtheta, lookup, **kw
+        As for :func:`find_cycles`.
+
+    Returns
+    -------
+    float or None
+        Where the S.L.C. appears or disappears between the first such pair,
+        bisected to 1e-6 relative (at most 40 halvings); None when no pair is
+        critical.
+    """
+    for k in range(len(values) - 1):
+        if critical(results[k], results[k + 1]):
+            lo, hi = values[k], values[k + 1]
+            has_lo = results[k].stable_amplitude is not None
+            for _ in range(40):
+                mid = 0.5 * (lo + hi)
+                if (find_cycles(*move(mid), mode, dtheta, lookup, **kw).stable_amplitude is not None) == has_lo:
+                    lo = mid
+                else:
+                    hi = mid
+                if abs(hi - lo) < 1e-6 * max(1.0, abs(hi)):
+                    break
+            return 0.5 * (lo + hi)
+    return None
+
+
+def merged(a: CyclesResult, b: CyclesResult) -> bool:
+    """v_oc lies between ``a`` and ``b`` (``a`` at the lower v0): ``a`` has an
+    S.L.C. and a U.L.C., ``b`` no S.L.C. and a stable origin."""
+    return (a.stable_amplitude is not None and a.unstable_amplitude is not None
+            and b.stable_amplitude is None and b.origin_stable)
 
 
 def sweep_v0(xchl, ychl, v0s, mode: str = "exact", dtheta=None, lookup: str = "listing",
@@ -342,11 +462,7 @@ def sweep_v0(xchl, ychl, v0s, mode: str = "exact", dtheta=None, lookup: str = "l
     ``progress``: a progress bar on standard error; by default only when it
     is a terminal.
     """
-    def merge(a, b):
-        return (a.stable_amplitude is not None and a.unstable_amplitude is not None
-                and b.stable_amplitude is None and b.origin_stable)
-
-    return _sweep(v0s, lambda v: move_to_v0(xchl, ychl, v), "sweep v0", merge, mode, dtheta, lookup, progress,
+    return _sweep(v0s, lambda v: move_to_v0(xchl, ychl, v), "sweep v0", merged, mode, dtheta, lookup, progress,
                   find_voc, "v0", **kw)
 
 

@@ -196,14 +196,32 @@ def replace_file(path, write) -> None:
 
 
 @contextmanager
-def staged_outdir(outdir, force: bool = False):
+def staged_outdir(outdir, force: bool = False, keep: Sequence[str] = ()):
     """Yield a temporary directory; on success move its files into ``outdir``.
 
     ``outdir`` is checked again (:func:`check_outdir`); an entry of the
     target that has an output's name but is a directory or was not written
     by lieng stops the move before anything is moved.
+
+    ``keep`` names subdirectories of ``outdir`` that the command writes
+    itself, each through its own :func:`staged_outdir` (``diagnose --batch``:
+    one per record).  Each must be new or a directory that holds only
+    lieng's outputs (checked here, before any computation); those written
+    are listed among the outputs, so that a later run may write them again.
     """
     target = check_outdir(outdir, force=force)
+    for name in keep:
+        sub = target / name
+        if os.path.lexists(sub):
+            if sub.is_symlink() or not sub.is_dir():
+                raise LiengInputError(f"-o {outdir}: {sub} is in the way of an output directory and lieng does not "
+                                      f"replace it: move it away or choose another directory")
+            try:
+                check_outdir(sub, force=False)
+            except LiengInputError:
+                raise LiengInputError(f"-o {outdir}: {sub} holds files lieng did not write, and lieng writes this "
+                                      f"output directory only when it is new or its own: move it away or choose "
+                                      f"another directory") from None
     base = target if target.is_dir() else _existing_ancestor(target.absolute(), "-o", outdir)
     tmp = Path(tempfile.mkdtemp(prefix=".lieng-staging.", dir=base))
     try:
@@ -222,11 +240,12 @@ def staged_outdir(outdir, force: bool = False):
         try:
             for name in names:
                 os.replace(tmp / name, target / name)
-            for name in sorted(owned - set(names)):
+            for name in sorted(owned - set(names) - set(keep)):
                 old = target / name
                 if old.is_symlink() or old.is_file():
                     old.unlink()
-            (target / MANIFEST).write_text("".join(f"{n}\n" for n in names), encoding="utf-8")
+            kept = {n for n in keep if (target / n).is_dir() and not (target / n).is_symlink()}
+            (target / MANIFEST).write_text("".join(f"{n}\n" for n in sorted(set(names) | kept)), encoding="utf-8")
         except BaseException:
             if created:
                 shutil.rmtree(target, ignore_errors=True)
