@@ -140,10 +140,15 @@ def return_map(xchl, ychl, x0, mode: str = "exact", dtheta=None, lookup: str = "
     """
     x, y = check_characteristic(xchl, ychl)
     code, dth = _mode_args(mode, dtheta, lookup)
+    return _return_map(x, y, equilibrium(x, y), x0, code, dth, tmax)
+
+
+def _return_map(x, y, xs, x0, code: int, dth: float, tmax: float = 200.0):
+    """:func:`return_map` on a checked characteristic (``x, y`` float arrays, equilibrium ``xs``) with the
+    mode's core code and DTHETA: the search for cycles calls it many times and checks once."""
     x0 = np.atleast_1d(np.asarray(x0, dtype=float))
     maxsteps = int(min(tmax / dth, 5e7)) if dth > 0 else 1
     xl, xr, per, st = _core.core_return_map(x, y, code, dth, x0, float(tmax), maxsteps)
-    xs = equilibrium(x, y)
     bad = st != 0
     xr = np.where(bad, xs, xr)
     per = np.where(bad, np.nan, per)
@@ -179,13 +184,14 @@ def find_cycles(xchl, ychl, mode: str = "exact", dtheta=None, lookup: str = "lis
     CyclesResult
     """
     x, y = check_characteristic(xchl, ychl)
+    code, dth = _mode_args(mode, dtheta, lookup)
     xs = equilibrium(x, y)
     if rmax is None:
         rmax = 2.0 * (np.abs(x - xs).max() + np.abs(y).max())
     r = np.geomspace(rmax * 1e-5, rmax, ngrid)
 
     def D(rr):
-        xl, xr, _ = return_map(x, y, xs + np.atleast_1d(rr), mode, dtheta, lookup)
+        xl, xr, _ = _return_map(x, y, xs, xs + np.atleast_1d(rr), code, dth)
         return xr - (xs + np.atleast_1d(rr))
 
     d = D(r)
@@ -195,7 +201,7 @@ def find_cycles(xchl, ychl, mode: str = "exact", dtheta=None, lookup: str = "lis
         if d[k] == 0 or np.sign(d[k]) != np.sign(d[k + 1]):
             rc = brentq(lambda q: D(q)[0], r[k], r[k + 1], xtol=1e-12 * scale, rtol=1e-15, maxiter=200)
             kind = "stable" if d[k] > 0 else "unstable"
-            cycles.append(_cycle(x, y, xs + rc, kind, mode, dtheta, lookup))
+            cycles.append(_cycle(x, y, xs, xs + rc, kind, code, dth))
     # D comes near zero without changing sign on the grid: a semi-stable
     # cycle (D touches zero), or two cycles closer than the grid spacing
     # (D crosses zero twice between grid points: a stable and an unstable
@@ -209,20 +215,19 @@ def find_cycles(xchl, ychl, mode: str = "exact", dtheta=None, lookup: str = "lis
                                   options={"xatol": 1e-10 * scale})
             dm = D(res.x)[0]
             if abs(dm) < 1e-7 * res.x:
-                cycles.append(_cycle(x, y, xs + res.x, "semi-stable", mode, dtheta, lookup))
+                cycles.append(_cycle(x, y, xs, xs + res.x, "semi-stable", code, dth))
             elif sgn * dm < 0:
                 for lo, hi in ((r[k - 1], res.x), (res.x, r[k + 1])):
                     rc = brentq(lambda q: D(q)[0], lo, hi, xtol=1e-12 * scale, rtol=1e-15, maxiter=200)
                     inside = D(0.5 * (lo + rc) if lo < rc else lo)[0]
-                    cycles.append(_cycle(x, y, xs + rc, "stable" if inside > 0 else "unstable", mode, dtheta,
-                                         lookup))
+                    cycles.append(_cycle(x, y, xs, xs + rc, "stable" if inside > 0 else "unstable", code, dth))
     origin_stable = bool(d[0] < 0)
     return CyclesResult(origin_stable, xs, sorted(cycles, key=lambda c: c.amplitude), mode,
                         None if mode == "exact" else float(dtheta))
 
 
-def _cycle(x, y, xr, kind, mode, dtheta, lookup) -> Cycle:
-    xl, xr2, per = return_map(x, y, [xr], mode, dtheta, lookup)
+def _cycle(x, y, xs, xr, kind, code, dth) -> Cycle:
+    xl, xr2, per = _return_map(x, y, xs, [xr], code, dth)
     return Cycle(float(xr - xl[0]), kind == "stable", kind, float(per[0]), float(xr), float(xl[0]))
 
 
