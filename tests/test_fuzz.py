@@ -101,3 +101,9 @@ def test_fuzz_twodof_args(case):
 @given(case=cases("outpaths"))
 def test_fuzz_output_paths(case):
     check_case(case)
+
+
+@fuzz_settings(30)
+@given(case=cases("map"))
+def test_fuzz_map_args(case):
+    check_case(case)

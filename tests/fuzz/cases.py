@@ -17,7 +17,7 @@ made before the run) and the dict ``opts`` (options of the command), so a
 failing case can be shrunk by dropping items (see ``campaign.py``).
 
 Kinds (``KINDS``): lieng1_deck, mlien_deck, trc_deck, trc_csv, diagnose,
-synth, sweep, twodof, outpaths.
+synth, sweep, twodof, outpaths, map.
 """
 
 from __future__ import annotations
@@ -491,6 +491,7 @@ OUTPUTS = {
                 "lienard_phase_planes.png", "characteristic.png", "nondim_mu.png"},
     "diagnose": {"diagnosis.json", "report.md", "trace.png", "characteristic.png", "residuals.png"},
     "twodof": {"twodof.json", "angle.png", "forces.png", "spectrum.png"},
+    "map": {"map.csv", "v_oc.csv", "map.png"},
     "figures": None,   # any *.png
 }
 #: the manifest of the outputs lieng writes in an output directory
@@ -1122,6 +1123,47 @@ def build_sweep(spec) -> Case:
     return Case("sweep", argv, [Entry("deck.dat", data=data)], notes, spec)
 
 
+# --- map ------------------------------------------------------------------------
+
+#: small grids that make sense for each axis (the others come from RANGES)
+MAP_OK = {"--v0": ["1:30:5", "0.5:20:3", "0:10:2", "1:2:1", "-30:-1:4"], "--dmu": ["0.5:1.5:3", "0.2:2:4", "1:1:1"],
+          "--slope": ["0.05:0.3:3", "0.1:0.1:1", "0.5:2:2"]}
+
+
+def gen_map(d: Drawer) -> dict:
+    """``lieng map``: a deck, --v0 and one of --dmu / --slope (small grids, or any range of RANGES), the
+    pool size or a scheduler address that is not a cluster."""
+    program = d.choice(["lieng1", "lieng1", "lieng1", "mlien"])
+    base = d.choice(["figures/fig2_27.dat", "figures/fig2_28.dat"] + LIENG1_BASES) if program == "lieng1" \
+        else d.choice(MLIEN_BASES)
+    o = {"--v0": d.choice(MAP_OK["--v0"]) if d.boolean(0.7) else d.choice(RANGES)}
+    axis = d.choice(["--dmu", "--slope", "--dmu", "--slope", "none", "both"])
+    for a in (["--dmu", "--slope"] if axis == "both" else [] if axis == "none" else [axis]):
+        o[a] = d.choice(MAP_OK[a]) if d.boolean(0.7) else d.choice(RANGES)
+    if program == "mlien" or d.boolean(0.1):
+        o["--program"] = program if d.boolean(0.9) else ("mlien" if program == "lieng1" else "lieng1")
+    if d.boolean(0.3):
+        o["--mode"] = d.choice(["faithful", "exact"])
+    if d.boolean(0.3):
+        o["--workers"] = d.choice(["1", "2", "2", "0", "-1", "1.5", "abc", "257", ""])
+    elif d.boolean(0.1):
+        o["--scheduler"] = d.choice(["nonsense", "tcp://", "tcp://127.0.0.1:1", "udp://x:1", ""])
+    if d.boolean(0.8):
+        o["--no-plots"] = True
+    muts = [gen_deck_mutation(d, program, 83)] if d.boolean(0.25) else []
+    spec = {"kind": "map", "program": program, "base": base, "opts": o, "mut": muts}
+    spec.update(_out_spec(d, "map"))
+    return spec
+
+
+def build_map(spec) -> Case:
+    notes = [f"deck: cards/{spec['base']}" + (" with mutations:" if spec["mut"] else "")]
+    lines = (CARDS / spec["base"]).read_text().splitlines()
+    data = apply_deck_mutations(lines, spec["program"], spec["mut"], notes)
+    return _finish("map", spec, ["map", "deck.dat"], spec["opts"], "dir", "deck.dat",
+                   [Entry("deck.dat", data=data)], notes, "map")
+
+
 # --- twodof ---------------------------------------------------------------------
 
 
@@ -1241,11 +1283,12 @@ GENERATORS = {
     "sweep": gen_sweep,
     "twodof": gen_twodof,
     "outpaths": gen_outpaths,
+    "map": gen_map,
 }
 BUILDERS = {
     "lieng1_deck": build_deck_case, "mlien_deck": build_deck_case, "trc_deck": build_deck_case,
     "trc_csv": build_trc_csv, "diagnose": build_diagnose, "synth": build_synth, "sweep": build_sweep,
-    "twodof": build_twodof, "outpaths": build_outpaths,
+    "twodof": build_twodof, "outpaths": build_outpaths, "map": build_map,
 }
 KINDS = tuple(GENERATORS)
 
