@@ -16,13 +16,10 @@
 !>    linear interpolation, time as steps*DTHETA (the angle turned about S).
 module cycles
    use lienard_core, only: wp, point_step, st_ok
+   use status_codes, only: st_no_return
    implicit none
    private
    public :: return_map_exact, return_map_faithful, flow_exact
-
-   !> Returned when the trajectory does not come back to the abscissa within
-   !> the time limit (it settles on the equilibrium, e.g. a stable node).
-   integer, parameter, public :: st_no_return = 10
 
    real(wp), parameter :: hstep = 0.02_wp      ! search step in time (units 1/omega_n)
 

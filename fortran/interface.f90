@@ -19,7 +19,7 @@ subroutine core_centre(n, xchl, ychl, slope, isel, lll, mmm, branch, xmdl, ymdl,
    integer, intent(out) :: branch              !< -1, 0, +1: FORMAT 1007, 1006, 1008
    real(wp), intent(out) :: xmdl               !< XMDL
    real(wp), intent(out) :: ymdl               !< YMDL
-   integer, intent(out) :: status              !< 0 or an error code (lienard_core)
+   integer, intent(out) :: status              !< st_ok or an error code (status_codes)
    integer, intent(out) :: where               !< index the error refers to
    call centre_of_symmetry(n, xchl, ychl, slope, isel, lll, mmm, branch, xmdl, ymdl, status, where)
 end subroutine core_centre
@@ -67,7 +67,7 @@ subroutine core_point(n, xchl, ychl, dtheta, x, y, t, lookup, xn, yn, tn, r, xb,
    real(wp), intent(out) :: dx                 !< DX
    real(wp), intent(out) :: dy                 !< DY
    real(wp), intent(out) :: dt                 !< DT
-   integer, intent(out) :: status              !< 0, or 4 (singular point), 5 (DT undefined)
+   integer, intent(out) :: status              !< st_ok, st_singular_point or st_dt_undefined (status_codes)
    call point_step(n, xchl, ychl, dtheta, x, y, t, lookup, xn, yn, tn, r, xb, xk, ds, dx, dy, dt, status)
 end subroutine core_point
 
@@ -91,7 +91,7 @@ subroutine core_lieng1(n, xchl, ychl, dtheta, xinp, yinp, xincr, yincr, ntraj, n
    real(wp), intent(out) :: x(npts, ntraj)     !< X
    real(wp), intent(out) :: y(npts, ntraj)     !< Y
    real(wp), intent(out) :: t(npts, ntraj)     !< T
-   integer, intent(out) :: status              !< 0 or the failing status
+   integer, intent(out) :: status              !< st_ok or the failing status (status_codes)
    integer, intent(out) :: where               !< L of the failure
    integer, intent(out) :: itraj               !< trajectory of the failure
    call lieng1_portrait(n, xchl, ychl, dtheta, xinp, yinp, xincr, yincr, ntraj, npts, lookup, &
@@ -122,7 +122,7 @@ subroutine core_advance(n, xchl, ychl, dtheta, nsteps, lookup, x, y, t, status, 
    real(wp), intent(inout) :: x                !< X, advanced in place
    real(wp), intent(inout) :: y                !< Y, advanced in place
    real(wp), intent(inout) :: t                !< T, advanced in place
-   integer, intent(out) :: status              !< 0 or the failing status
+   integer, intent(out) :: status              !< st_ok or the failing status (status_codes)
    integer, intent(out) :: where               !< the failing step
    call point_advance(n, xchl, ychl, dtheta, nsteps, lookup, x, y, t, status, where)
 end subroutine core_advance
@@ -152,7 +152,7 @@ subroutine core_mlien(n, xchl0, ychl0, dtheta, omega, ampv0, xinp, yinp, npts, t
    real(wp), intent(out) :: ymdl(npts)         !< YMDL in force at each point
    real(wp), intent(out) :: xchl(n)            !< last position of the characteristic
    real(wp), intent(out) :: ychl(n)            !< its ordinates
-   integer, intent(out) :: status              !< 0 or an error code
+   integer, intent(out) :: status              !< st_ok or an error code (status_codes)
    integer, intent(out) :: where               !< L of the failure
    call mlien_run(n, xchl0, ychl0, dtheta, omega, ampv0, xinp, yinp, npts, trig, lookup, &
                   x, y, t, r, xmdl, ymdl, xchl, ychl, status, where)
@@ -172,7 +172,7 @@ subroutine core_timdis(n, xchl, ychl, vo, ampv0, omega, tl, diff, adiff, status)
    real(wp), intent(in) :: tl                  !< T(L)
    real(wp), intent(out) :: diff               !< DIFF
    real(wp), intent(out) :: adiff              !< ADIFF
-   integer, intent(out) :: status              !< 0 or 9 (DIFF outside the characteristic)
+   integer, intent(out) :: status              !< st_ok or st_timdis_range (status_codes)
    call timdis(n, xchl, ychl, vo, ampv0, omega, tl, diff, adiff, status)
 end subroutine core_timdis
 
@@ -213,7 +213,7 @@ subroutine core_return_map(n, xchl, ychl, mode, dtheta, m, x0, tmax, maxsteps, x
    real(wp), intent(out) :: xleft(m)           !< left crossing
    real(wp), intent(out) :: xright(m)          !< right crossing, P(X0)
    real(wp), intent(out) :: period(m)          !< time of the revolution
-   integer, intent(out) :: status(m)           !< 0, or 10 when the trajectory does not return
+   integer, intent(out) :: status(m)           !< st_ok, or st_no_return when the trajectory does not return
    if (mode == 3) then
       call return_map_exact(n, xchl, ychl, m, x0, tmax, xleft, xright, period, status)
    else
@@ -234,7 +234,7 @@ subroutine core_flow_exact(n, xchl, ychl, ydir, tmax, x, y, t, status)
    real(wp), intent(inout) :: x                !< X
    real(wp), intent(inout) :: y                !< Y
    real(wp), intent(inout) :: t                !< T
-   integer, intent(out) :: status              !< 0 or 10
+   integer, intent(out) :: status              !< st_ok or st_no_return (status_codes)
    call flow_exact(n, xchl, ychl, ydir, tmax, x, y, t, status)
 end subroutine core_flow_exact
 
@@ -291,7 +291,7 @@ subroutine core_trc_reduce(nn, t, x, xn, omnh, omnv, xs, v, vn, vln, vnln, am, x
    integer, intent(out) :: has_eln             !< 1 when ELN was found
    integer, intent(out) :: iel                 !< point of the + to - sign change (1-based)
    integer, intent(out) :: ieln                !< point of the - to + sign change (0: none)
-   integer, intent(out) :: status              !< 0 or a trc error code
+   integer, intent(out) :: status              !< st_ok or a TRC code st_trc_* (status_codes)
    integer, intent(out) :: where               !< point of the error
    real(wp), intent(out) :: xx0(nn)            !< XX before the shift by EL
    real(wp), intent(out) :: xxn0(nn)           !< XXN before the shift by ELN
@@ -309,7 +309,7 @@ subroutine core_belfit(n, x, y, ys, status, where)
    real(wp), intent(in) :: x(n)                !< X
    real(wp), intent(in) :: y(n)                !< Y
    real(wp), intent(out) :: ys(n)              !< Y smoothed
-   integer, intent(out) :: status              !< 0 or a trc error code
+   integer, intent(out) :: status              !< st_ok or a TRC code st_trc_* (status_codes)
    integer, intent(out) :: where               !< first point of a degenerate group
    real(wp) :: xxx(n), yw(n)
    yw = y
@@ -347,7 +347,7 @@ subroutine core_slider(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, a
    real(wp), intent(in) :: delta, age_a, age_tau, kx, xref, creep0, creep1, x0
    real(wp), intent(out) :: x(n), v(n)
    integer, intent(out) :: state(n)
-   integer, intent(out) :: status
+   integer, intent(out) :: status              !< st_ok, st_bad_argument or st_nonfinite_state (status_codes)
    call slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, age_a, age_tau, kx, xref, &
                    creep0, creep1, x0, x, v, state, status)
 end subroutine core_slider

@@ -16,33 +16,17 @@
 !> every such place is listed in fortran/RESTORATION.md.
 module lienard_core
    use iso_fortran_env, only: wp => real64
+   use status_codes, only: st_ok, st_infinite_slope, st_no_negative_slope, st_centre_undefined, &
+                           st_singular_point, st_dt_undefined, st_bad_size, st_arcos_domain, st_omega_zero, &
+                           st_timdis_range
    implicit none
    private
+   ! the status codes (status_codes), re-exported for the programs built on this module
+   public :: st_ok, st_infinite_slope, st_no_negative_slope, st_centre_undefined, st_singular_point, &
+             st_dt_undefined, st_bad_size, st_arcos_domain, st_omega_zero, st_timdis_range
 
    public :: wp
    public :: char_slopes, centre_of_symmetry, xb_listing, xb_bisect, point_step, point_advance
-
-   !> Status codes returned by the routines of this module and of the
-   !> programs built on it (0 = success).
-   integer, parameter, public :: st_ok = 0
-   !> XCHL(J) = XCHL(J+1): infinite slope ("CONTROL STATEMENT DOES NOT EXIST").
-   integer, parameter, public :: st_infinite_slope = 1
-   !> No negative-slope point among SLOPE(1..K-1) (FORMAT 1175).
-   integer, parameter, public :: st_no_negative_slope = 2
-   !> Equal-slope interpolation divides by zero (BB = 0 at statement 210/220).
-   integer, parameter, public :: st_centre_undefined = 3
-   !> The point P coincides with S (XK = 0 and Y = 0): the singular point.
-   integer, parameter, public :: st_singular_point = 4
-   !> 2*Y - DY = 0 in the DT formula: the time increment is undefined.
-   integer, parameter, public :: st_dt_undefined = 5
-   !> An array size out of range (N < 2, NPTS < 1, ...).
-   integer, parameter, public :: st_bad_size = 6
-   !> MLIEN: |VO/AMPV0| > 1 or AMPV0 = 0 (ARCOS out of its domain).
-   integer, parameter, public :: st_arcos_domain = 7
-   !> MLIEN: OMEGA = 0 (T(1) = PHI/OMEGA undefined).
-   integer, parameter, public :: st_omega_zero = 8
-   !> MLIEN: TIMDIS finds no point of the characteristic at velocity DIFF.
-   integer, parameter, public :: st_timdis_range = 9
 
    !> Modes of the POINT step.
    !> 0 (listing): the listing's linear scan (DO 315 JJ=1,N) and its

@@ -21,6 +21,7 @@
 !> the output samples.  Units: mm, s.
 module slider
    use iso_fortran_env, only: wp => real64
+   use status_codes, only: st_ok, st_bad_argument, st_nonfinite_state
    implicit none
    private
    public :: slider_run
@@ -72,16 +73,16 @@ contains
       real(wp), intent(out) :: x(n)           !< displacement (mm)
       real(wp), intent(out) :: v(n)           !< velocity (mm/s)
       integer, intent(out) :: state(n)        !< 1 stick, 0 slip
-      integer, intent(out) :: status          !< 0 ok, 1 bad arguments, 2 non-finite state
+      integer, intent(out) :: status          !< st_ok, st_bad_argument or st_nonfinite_state
       real(wp) :: h, xs, vs_, t_st, s, sprev, f, lfac, vdr, lim, a, w, r, b
       integer :: i, k
       logical :: stick
 
-      status = 0
+      status = st_ok
       x = 0.0_wp; v = 0.0_wp; state = 0
       if (n < 2 .or. nsub < 1 .or. ns < 1 .or. .not. (dt > 0.0_wp) .or. .not. (wn > 0.0_wp) &
           .or. .not. (age_tau > 0.0_wp)) then
-         status = 1
+         status = st_bad_argument
          return
       end if
       h = dt / nsub
@@ -137,7 +138,7 @@ contains
             end if
          end do
          if (.not. (abs(xs) < huge(1.0_wp) .and. abs(vs_) < huge(1.0_wp))) then
-            status = 2
+            status = st_nonfinite_state
             return
          end if
          x(i + 1) = xs

@@ -19,16 +19,13 @@
 !> (entries R1-R30).
 module trc
    use iso_fortran_env, only: wp => real64
+   use status_codes, only: trc_ok => st_ok, trc_bad_size => st_trc_few_points, trc_no_el => st_trc_no_el, &
+                           trc_degenerate_fit => st_trc_degenerate_fit, trc_zero_dt => st_trc_zero_dt
    implicit none
    private
    public :: trc_calibrate, trc_reduce, belfit, lsqfit
    public :: trc_ok, trc_bad_size, trc_no_el, trc_degenerate_fit, trc_zero_dt
 
-   integer, parameter :: trc_ok = 0             !< success
-   integer, parameter :: trc_bad_size = 1       !< fewer than 10 points (BELFIT needs 2M-1 = 9 and more)
-   integer, parameter :: trc_no_el = 2          !< no + to - sign change of VLN: EL undefined
-   integer, parameter :: trc_degenerate_fit = 3 !< a BELFIT group has fewer than 3 distinct abscissae
-   integer, parameter :: trc_zero_dt = 4        !< two readings at the same time: V undefined
 
    !> HOR = HO/500., X = HOR + H*SENSF/500.: the horizontal bridge's calibration
    real(wp), parameter, public :: cal_h = 500.0_wp

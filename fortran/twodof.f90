@@ -17,6 +17,7 @@
 !> located by bisection on the sub-step to machine precision.
 module twodof
    use iso_fortran_env, only: wp => real64
+   use status_codes, only: st_ok, st_bad_argument, st_nonfinite_state
    implicit none
    private
    public :: twodof_run
@@ -111,16 +112,16 @@ contains
       real(wp), intent(out) :: ffric(n)        !< friction force on the pins (N)
       integer, intent(out) :: state(n)         !< 1 stick, 0 slip
       integer, intent(out) :: nswitch          !< number of stick/slip switches
-      integer, intent(out) :: status           !< 0 ok, 1 bad arguments, 2 non-finite state
+      integer, intent(out) :: status           !< st_ok, st_bad_argument or st_nonfinite_state
       real(wp) :: s(4), sn(4), h, hleft, dir, g0, g1, lo, hi, mid, st(4), a1, ff
       integer :: i, j, regime, it
 
-      status = 0
+      status = st_ok
       nswitch = 0
       x1 = 0.0_wp; v1 = 0.0_wp; x2 = 0.0_wp; v2 = 0.0_wp; fnorm = 0.0_wp; ffric = 0.0_wp; state = 0
       if (n < 2 .or. nsub < 1 .or. .not. (dt > 0.0_wp) .or. .not. (eta >= 0.0_wp) .or. &
           .not. (m(1, 1)*m(2, 2) - m(1, 2)*m(2, 1) > 0.0_wp) .or. .not. (m(1, 1) > 0.0_wp)) then
-         status = 1
+         status = st_bad_argument
          return
       end if
       s = s0
@@ -159,7 +160,7 @@ contains
             end do
          end do
          if (.not. all(abs(s) < huge(1.0_wp))) then
-            status = 2
+            status = st_nonfinite_state
             return
          end if
          call record(i)

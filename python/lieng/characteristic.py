@@ -17,6 +17,7 @@ import numpy as np
 from . import _core
 from .cards import Card, card_location, write_cards
 from .errors import CentreUndefined, LiengInputError
+from . import status as st
 
 __all__ = ["Centre", "check_characteristic", "centre_of_symmetry", "api_locator", "NMAX_DECK",
            "CHAR_CARDS", "DeckBase"]
@@ -136,12 +137,12 @@ def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator, *, undefined: s
     x, y = check_characteristic(xchl, ychl, locate)
     slope, isel, lll, mmm, branch, xmdl, ymdl, status, where = _core.core_centre(x, y)
     n = x.size
-    if status == 2:
+    if status == st.NO_NEGATIVE_SLOPE:
         raise CentreUndefined(
             f"{locate('YCHL', 1)}..{locate('YCHL', n)}: there is not a negative slope point among "
             f"segments 1..{n - 2} (FORMAT 1175): the centre of symmetry cannot be found"
         )
-    if status == 3:
+    if status == st.CENTRE_UNDEFINED:
         msg = (
             f"{locate('XCHL', where)}..{locate('XCHL', where + 2)}: segments {where} and {where + 1} of the "
             f"negative-slope run have equal slopes, so the equal-slope interpolation of PINPUT "
@@ -152,8 +153,8 @@ def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator, *, undefined: s
         warnings.warn(f"{msg}; XMDL and YMDL are NaN", stacklevel=2)
         return Centre(np.asarray(slope[: n - 1]).copy(), int(isel), int(lll), int(mmm), int(branch),
                       float("nan"), float("nan"))
-    if status != 0:  # pragma: no cover - ruled out by check_characteristic
-        raise LiengInputError(f"characteristic rejected by the core (status {status} at {where})")
+    if status != st.OK:  # pragma: no cover - ruled out by check_characteristic
+        raise LiengInputError(f"characteristic rejected by the core ({st.name(status)} at {where})")
     return Centre(np.asarray(slope[: n - 1]).copy(), int(isel), int(lll), int(mmm), int(branch),
                   float(xmdl), float(ymdl))
 

@@ -37,6 +37,7 @@ from scipy.optimize import brentq, minimize_scalar
 from . import _core
 from .characteristic import centre_of_symmetry, check_characteristic
 from .errors import LiengInputError
+from . import status as st
 from .lieng1 import lookup_code
 
 __all__ = ["Cycle", "CyclesResult", "return_map", "find_cycles", "move_to_v0", "scale_static_peak",
@@ -148,8 +149,8 @@ def _return_map(x, y, xs, x0, code: int, dth: float, tmax: float = 200.0):
     mode's core code and DTHETA: the search for cycles calls it many times and checks once."""
     x0 = np.atleast_1d(np.asarray(x0, dtype=float))
     maxsteps = int(min(tmax / dth, 5e7)) if dth > 0 else 1
-    xl, xr, per, st = _core.core_return_map(x, y, code, dth, x0, float(tmax), maxsteps)
-    bad = st != 0
+    xl, xr, per, stat = _core.core_return_map(x, y, code, dth, x0, float(tmax), maxsteps)
+    bad = stat != st.OK                           # st.NO_RETURN: settled on the equilibrium
     xr = np.where(bad, xs, xr)
     per = np.where(bad, np.nan, per)
     return xl, xr, per
@@ -240,7 +241,7 @@ def move_to_v0(xchl, ychl, v0: float):
     vo = centre_of_symmetry(x, y).ymdl
     xs, ys = x.copy(), y.copy()
     diff, adiff, status = _core.core_timdis(xs, ys, vo, float(v0), 0.0, 0.0)
-    if status != 0:
+    if status != st.OK:
         raise LiengInputError(f"v0 = {v0:g}: the characteristic has no point at velocity VO - v0 = {vo - v0:g} "
                               f"(its range is {y[-1]:g} to {y[0]:g}), so TIMDIS cannot move it there")
     return xs, ys

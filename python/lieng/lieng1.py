@@ -31,6 +31,7 @@ from .cards import Card, read_cards
 from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
                              char_from_values, check_characteristic)
 from .errors import CentreUndefined, LiengInputError
+from . import status as st
 
 __all__ = ["LAYOUT", "Deck", "Lieng1Result", "lieng1", "run_deck", "LOOKUP_MODES", "lookup_code"]
 
@@ -135,18 +136,18 @@ class Lieng1Result:
 
 
 def _status_error(status: int, where: int, itraj: int, x0: float, y0: float, locate_start: str) -> LiengInputError:
-    if status == 4:
+    if status == st.SINGULAR_POINT:
         return LiengInputError(
             f"{locate_start}: trajectory {itraj} reaches the singular point at step {where} "
             f"(P = S: X = XB, Y = 0; it starts at X = {x0:g}, Y = {y0:g}): Lienard's construction has no "
             f"direction there"
         )
-    if status == 5:
+    if status == st.DT_UNDEFINED:
         return LiengInputError(
             f"{locate_start}: trajectory {itraj}, step {where}: 2*Y - DY = 0 in DT = |2*DX/(2*Y-DY)|, "
             f"the time increment is undefined"
         )
-    return LiengInputError(f"{locate_start}: the core stopped with status {status} (trajectory {itraj}, step {where})")
+    return LiengInputError(f"{locate_start}: the core stopped ({st.name(status)}) (trajectory {itraj}, step {where})")
 
 
 def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3000, *,
@@ -231,7 +232,7 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
         starts[k] = xs, ys
         xs -= float(xincr)
         ys -= float(yincr)
-    if status != 0:
+    if status != st.OK:
         raise _status_error(int(status), int(where), int(itraj), *starts[int(itraj) - 1], _locate_start)
     return Lieng1Result(np.ascontiguousarray(X.T), np.ascontiguousarray(Y.T), np.ascontiguousarray(T.T),
                         centre.xmdl, centre.ymdl, centre, x, y, starts, float(dtheta))

@@ -35,6 +35,7 @@ from .cards import Card, read_cards
 from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
                              char_from_values, check_characteristic)
 from .errors import LiengInputError
+from . import status as st
 from .lieng1 import check_growth, lookup_code
 
 __all__ = ["LAYOUT", "TRIGGER_LISTING", "Deck", "MlienResult", "mlien", "run_deck", "trial_run_points"]
@@ -230,7 +231,7 @@ def mlien(xchl, ychl, xinp, yinp, dtheta, omega, ampv0, trigger=None, npts=3000,
         x, y, float(dtheta), float(omega), float(ampv0), float(xinp), float(yinp), npts,
         np.array(trig, dtype=float), lookup_code(lookup))
     status, where = int(status), int(where)
-    if status == 9:
+    if status == st.TIMDIS_RANGE:
         tw = float(T[where - 1])
         with np.errstate(all="ignore"):
             phase = np.float64(omega) * np.float64(tw)
@@ -248,16 +249,16 @@ def mlien(xchl, ychl, xinp, yinp, dtheta, omega, ampv0, trigger=None, npts=3000,
             f"characteristic at a velocity outside its range (TIMDIS would use an undefined ADIFF); "
             f"extend YCHL or reduce AMPV0"
         )
-    if status == 4:
+    if status == st.SINGULAR_POINT:
         raise LiengInputError(f"{names['XINP']}: point {where} is the singular point (P = S): Lienard's "
                               f"construction has no direction there")
-    if status == 5:
+    if status == st.DT_UNDEFINED:
         raise LiengInputError(f"{names['XINP']}: point {where}: 2*Y - DY = 0, the time increment is undefined")
-    if status == 3:
+    if status == st.CENTRE_UNDEFINED:
         raise LiengInputError(f"at point {where} the moved characteristic's centre of symmetry is undefined "
                               f"(equal-slope interpolation divides by zero)")
-    if status != 0:
-        raise LiengInputError(f"the MLIEN core stopped with status {status} at point {where}")
+    if status != st.OK:
+        raise LiengInputError(f"the MLIEN core stopped ({st.name(status)}) at point {where}")
     check_growth(X, Y, T, x, y, names["DTHETA"], float(dtheta), (float(xinp), float(yinp)))
     return MlienResult(X, Y, T, R, XM, YM, x, y, XL, YL, centre, vo, math.acos(vo / float(ampv0)),
                        float(omega), float(ampv0), float(dtheta), trig)

@@ -48,6 +48,7 @@ import numpy as np
 from . import _core
 from .cards import Card, card_location, read_cards, write_cards
 from .errors import LiengInputError
+from . import status as st
 from .table import read_columns
 
 __all__ = ["Deck", "TrcResult", "trc", "calibrate", "belfit", "lsqfit", "read_csv", "CSV_COLUMNS",
@@ -85,18 +86,18 @@ def data_cards(nn: int) -> list[Card]:
 
 
 def _err_status(status: int, where: int, what: str) -> LiengInputError:
-    if status == 1:
+    if status == st.TRC_FEW_POINTS:
         return LiengInputError(f"{what}: fewer than {NMIN} points (BELFIT fits groups of 5 points)")
-    if status == 2:
+    if status == st.TRC_NO_EL:
         return LiengInputError(f"{what}: no velocity sign change: VLN never goes from + to - and stays - for "
                                f"four samples, so the origin EL is undefined (the listing leaves it so)")
-    if status == 3:
+    if status == st.TRC_DEGENERATE_FIT:
         return LiengInputError(f"{what}: points {where}-{where + 4} have fewer than 3 distinct displacements: "
                                f"BELFIT's quadratic least-squares fit over them is singular")
-    if status == 4:
+    if status == st.TRC_ZERO_DT:
         return LiengInputError(f"{what}: points {where - 1} and {where} have the same time: the velocity "
                                f"V({where}) divides by zero")
-    return LiengInputError(f"{what}: the TRC core stopped with status {status} at point {where}")
+    return LiengInputError(f"{what}: the TRC core stopped ({st.name(status)}) at point {where}")
 
 
 @dataclass
@@ -427,7 +428,7 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
     with np.errstate(all="ignore"):
         (xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln,
          status, where, xx0, xxn0) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
-    if status != 0:
+    if status != st.OK:
         raise _err_status(int(status), int(where), _where)
     el_listing, eln_listing = float(el), float(eln) if has_eln else math.nan
     eln_undefined = False
@@ -537,7 +538,7 @@ def belfit(x, y):
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
         raise LiengInputError("belfit: x and y must be finite")
     ys, status, where = _core.core_belfit(x, y)
-    if status != 0:
+    if status != st.OK:
         raise _err_status(int(status), int(where), "belfit")
     return ys
 

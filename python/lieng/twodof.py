@@ -25,6 +25,7 @@ import numpy as np
 
 from . import _core
 from .errors import LiengInputError
+from . import status as st
 
 __all__ = ["RigParams", "matrices", "modal_frequencies", "identify_k2", "simulate", "Simulation", "metrics",
            "onedof", "compare", "PAPER", "rpm_to_belt", "write_outputs"]
@@ -179,8 +180,8 @@ def _run(M, C, K, kn, p, preload, v0, t_end, dt, nsub):
     out = _core.core_twodof(n, dt, nsub, M, C, K, float(preload), kn, p.mus, p.muk, float(v0), p.eta,
                             np.array([0.0, 0.0, 0.0, float(v0)]))
     x1, v1, x2, v2, fnorm, ffric, state, nswitch, status = out
-    if status != 0:
-        raise LiengInputError(f"the integration failed (status {int(status)}): check the parameters")
+    if status != st.OK:
+        raise LiengInputError(f"the integration failed ({st.name(status)}): check the parameters")
     return np.arange(n) * dt, x1, v1, x2, v2, fnorm, ffric, state.astype(bool), int(nswitch)
 
 

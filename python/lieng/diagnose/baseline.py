@@ -37,6 +37,7 @@ import numpy as np
 
 from .. import _core
 from ..errors import LiengInputError
+from .. import status as st
 from .segment import Cycles, Prepared, slip_seconds, stick_ratios
 
 __all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "model_y", "calibrate_fn"]
@@ -164,8 +165,8 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta,
                                             p.age_a, max(p.age_tau, 1e-3 * dt), p.load_kx, p.load_xref, p.creep0, p.creep1,
                                             float(start))
-    if status != 0:
-        raise LiengInputError(f"the slider simulation failed (status {status}): check --fn and the record's units")
+    if status != st.OK:
+        raise LiengInputError(f"the slider simulation failed ({st.name(status)}): check --fn and the record's units")
     if p.trig_ax:
         x = x + p.trig_ax * _sin(t, p.trig_f, p.trig_phx)
     return x, v, state
