@@ -29,7 +29,8 @@ from .trc import TrcResult, trc
 __version__ = "0.1.0"
 
 #: the analyses, imported on first use: ``lieng.cycles.find_cycles(...)``
-_SUBMODULES = ("cycles", "twodof", "diagnose", "figures", "synth", "outputs", "inputs", "table")
+_SUBMODULES = ("cycles", "regime_map", "twodof", "diagnose", "figures", "synth", "outputs", "inputs", "table",
+               "executor", "status")
 
 
 def __getattr__(name):
