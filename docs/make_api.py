@@ -16,14 +16,15 @@ from pathlib import Path
 #: and the I/O and support modules
 MODULES = [
     ("lieng", "The 1971 programs and their decks (`import lieng`)"),
-    ("lieng.cycles", "Limit cycles, return maps, sweeps of v0 and dmu0 (ch. 2.3.1.4-2.4.2)"),
-    ("lieng.regime_map", "Table 2.IV over a grid (`lieng map`)"),
-    ("lieng.twodof", "The 2-DoF dual-pin-on-disc rig (seed 001)"),
+    ("lieng.programs", "The restored programs' layer: decks of any program"),
+    ("lieng.analysis.cycles", "Limit cycles, return maps, sweeps of v0 and dmu0 (ch. 2.3.1.4-2.4.2)"),
+    ("lieng.analysis.regime_map", "Table 2.IV over a grid (`lieng map`)"),
+    ("lieng.analysis.twodof", "The 2-DoF dual-pin-on-disc rig (seed 001)"),
     ("lieng.diagnose", "What the 1-DoF model gets wrong on a measured record (`lieng diagnose`)"),
-    ("lieng.synth", "Synthetic records with an effect hidden in them (`lieng synth`)"),
-    ("lieng.figures", "The thesis's theoretical figures (`lieng figures`)"),
-    ("lieng.table", "Tables as labs write them (CSV/TAB/whitespace, units in the header)"),
-    ("lieng.executor", "Where independent tasks run: in process, a process pool, a Dask cluster"),
+    ("lieng.analysis.synth", "Synthetic records with an effect hidden in them (`lieng synth`)"),
+    ("lieng.analysis.figures", "The thesis's theoretical figures (`lieng figures`)"),
+    ("lieng.io.table", "Tables as labs write them (CSV/TAB/whitespace, units in the header)"),
+    ("lieng.analysis.executor", "Where independent tasks run: in process, a process pool, a Dask cluster"),
     ("lieng.status", "The status codes of the compiled core (one table with fortran/status.f90)"),
 ]
 

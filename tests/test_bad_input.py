@@ -119,7 +119,7 @@ def test_listing_prints_asterisks_for_values_too_wide(prog, src, card, c1, c2, v
 
 
 def test_format_f_overflow_is_asterisks_like_gfortran():
-    from lieng.cards import format_value, parse_format
+    from lieng.io.cards import format_value, parse_format
 
     ed = parse_format("(F20.8)").items[0]
     assert format_value(1e20, ed) == "*" * 20

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from lieng import LiengInputError, read_deck, write_deck
-from lieng.cards import Card, _flatten, parse_format, read_cards, read_record, write_record
-from lieng.lieng1 import Deck
+from lieng.io.cards import Card, _flatten, parse_format, read_cards, read_record, write_record
+from lieng.programs.lieng1 import Deck
 
 from conftest import CARDS
 

@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import pytest
 
-import lieng.listing as listing_mod
+import lieng.programs.listing as listing_mod
 from lieng import read_deck
 from lieng.cli import main
 

@@ -3,7 +3,7 @@
 from PIL import Image
 
 from lieng.cli import main
-from lieng.figures import FIGURES
+from lieng.analysis.figures import FIGURES
 
 from conftest import CARDS
 

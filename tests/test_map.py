@@ -14,10 +14,10 @@ import numpy as np
 import pytest
 
 from lieng import cycles
-from lieng.cards import read_deck, write_deck
+from lieng.programs import read_deck, write_deck
 from lieng.cli import main
-from lieng.executor import open_executor
-from lieng.regime_map import (DEPENDS_ON_TRIGGER, METASTABLE, NO_MOTION, NO_SELF_SUSTAINED, REGIMES, SELF_EXCITED,
+from lieng.analysis.executor import open_executor
+from lieng.analysis.regime_map import (DEPENDS_ON_TRIGGER, METASTABLE, NO_MOTION, NO_SELF_SUSTAINED, REGIMES, SELF_EXCITED,
                               classify, regime_map)
 
 from conftest import CARDS, ROOT, thesis_characteristic
@@ -203,7 +203,7 @@ def test_a_local_dask_cluster_gives_the_same_csv(tmp_path):
 
 
 def batch_dir(tmp_path):
-    from lieng.synth import synthesize
+    from lieng.analysis.synth import synthesize
 
     d = tmp_path / "records"
     d.mkdir()

@@ -166,7 +166,7 @@ def test_a9_7_decay_deck_oscillation_dies_out_at_the_damping_of_the_stable_origi
 
     from scipy.signal import find_peaks
 
-    from lieng.mlien import Deck, run_deck
+    from lieng.programs.mlien import Deck, run_deck
 
     deck = Deck.from_lines((CARDS / "mlien_a9_7_decay.dat").read_text().splitlines())
     assert deck.trigger == (1.25, 30000.0, 0.02, 0.02) and deck.omega < 0

@@ -144,7 +144,7 @@ def test_the_fast_loop_takes_the_steps_of_the_fast_mode():
         assert _core.core_advance(x, y, 0.01, 2999, 1, np.array(x0), np.array(y0), tb)[0] == 0
         assert float(ts) == pytest.approx(float(tb), rel=1e-9)         # T before the time correction
     # the singular point: at the equilibrium on the first step
-    xe = lieng.cycles.equilibrium(x, y)
+    xe = lieng.analysis.cycles.equilibrium(x, y)
     status, where = _core.core_advance(x, y, 0.01, 10, 2, np.array(xe), np.array(0.0), np.array(0.0))
     s1, w1 = _core.core_advance(x, y, 0.01, 10, 1, np.array(xe), np.array(0.0), np.array(0.0))
     assert (status, where) == (s1, w1) and status != 0 and where == 1

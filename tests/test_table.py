@@ -1,6 +1,6 @@
 """Tables as labs write them: the variants of header, units, separators and
 missing samples that loggers and spreadsheets produce are read to the same
-numbers as a plain ``t [s],F [N]`` file (``lieng.table.read_table`` and
+numbers as a plain ``t [s],F [N]`` file (``lieng.io.table.read_table`` and
 ``lieng.diagnose.read_record``)."""
 
 from __future__ import annotations

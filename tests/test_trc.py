@@ -8,17 +8,15 @@ import math
 import numpy as np
 import pytest
 
-import sys
 
 import lieng
-import lieng.trc  # noqa: F401  (the module; lieng.trc is the function)
+import lieng.programs.trc as trc_mod
 from lieng.cli import main
 from lieng.errors import LiengInputError
 
 from conftest import CARDS, rng, thesis_characteristic
 from reference import belfit_reference, trc_readings_deck
 
-trc_mod = sys.modules["lieng.trc"]
 
 DEMO = CARDS / "trc_demo.dat"
 

@@ -18,26 +18,28 @@ import os as _os
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     _os.environ.setdefault(_var, "1")
 
-from .cards import read_deck, write_deck  # noqa: E402
-from .characteristic import centre_of_symmetry
-from .errors import LiengInputError
-from .lieng1 import Lieng1Result, lieng1
-from . import mlien as mlien_module
-from .mlien import MlienResult, mlien
-from .trc import TrcResult, trc
+from lieng.programs import read_deck, write_deck  # noqa: E402
+from lieng.programs.characteristic import centre_of_symmetry
+from lieng.errors import LiengInputError
+from lieng.programs.lieng1 import Lieng1Result, lieng1
+from lieng.programs import mlien as mlien_module
+from lieng.programs.mlien import MlienResult, mlien
+from lieng.programs.trc import TrcResult, trc
 
 __version__ = "0.1.0"
 
-#: the analyses, imported on first use: ``lieng.cycles.find_cycles(...)``
-_SUBMODULES = ("cycles", "regime_map", "twodof", "diagnose", "figures", "synth", "outputs", "inputs", "table",
-               "executor", "status")
+#: the analyses and support modules, imported on first use: ``lieng.cycles.find_cycles(...)``
+_SUBMODULES = {"cycles": "lieng.analysis.cycles", "regime_map": "lieng.analysis.regime_map",
+               "twodof": "lieng.analysis.twodof", "figures": "lieng.analysis.figures", "synth": "lieng.analysis.synth",
+               "executor": "lieng.analysis.executor", "diagnose": "lieng.diagnose", "outputs": "lieng.io.outputs",
+               "inputs": "lieng.io.inputs", "table": "lieng.io.table", "cards": "lieng.io.cards", "status": "lieng.status"}
 
 
 def __getattr__(name):
     if name in _SUBMODULES:
         import importlib
 
-        return importlib.import_module(f".{name}", __name__)
+        return importlib.import_module(_SUBMODULES[name])
     raise AttributeError(f"module 'lieng' has no attribute {name!r}")
 
 __all__ = [

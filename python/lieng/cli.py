@@ -16,8 +16,8 @@ import sys
 import warnings
 from pathlib import Path
 
-from .errors import LiengInputError
-from .outputs import PLOT_DEFAULT, PLOT_FORMATS, plot_output
+from lieng.errors import LiengInputError
+from lieng.io.outputs import PLOT_DEFAULT, PLOT_FORMATS, plot_output
 
 __all__ = ["main"]
 
@@ -45,18 +45,25 @@ def _reject_inapplicable(args) -> None:
                               f"POINT step)")
 
 
+def _map_plot(res, outdir, source):
+    """``lieng map``'s plot (matplotlib is imported only when plots are asked for)."""
+    from lieng.analysis.map_plot import regime_map_plot
+
+    return regime_map_plot(res, outdir, source)
+
+
 def _plots(name, res, outdir, *more):
     """A program's plots (matplotlib is imported only when plots are asked for)."""
-    from . import graf
+    from lieng.programs import graf
 
     return getattr(graf, name)(res, outdir, *more)
 
 
 def _run_lieng1(args) -> int:
-    from .cards import read_deck
-    from .lieng1 import run_deck
-    from .listing import lieng1_listing
-    from .outputs import check_outdir, staged_outdir, write_csv, write_lines
+    from lieng.programs import read_deck
+    from lieng.programs.lieng1 import run_deck
+    from lieng.programs.listing import lieng1_listing
+    from lieng.io.outputs import check_outdir, staged_outdir, write_csv, write_lines
 
     check_outdir(args.outdir, args.force)
     deck = read_deck(args.deck, program="lieng1")
@@ -79,10 +86,10 @@ def _run_lieng1(args) -> int:
 
 
 def _run_mlien(args) -> int:
-    from .cards import read_deck
-    from .listing import mlien_listing
-    from .mlien import run_deck
-    from .outputs import check_outdir, staged_outdir, write_csv, write_lines
+    from lieng.programs import read_deck
+    from lieng.programs.listing import mlien_listing
+    from lieng.programs.mlien import run_deck
+    from lieng.io.outputs import check_outdir, staged_outdir, write_csv, write_lines
 
     check_outdir(args.outdir, args.force)
     deck = read_deck(args.deck, program="mlien")
@@ -108,7 +115,7 @@ def _is_table(path) -> bool:
     """A delimited table with a header naming a time column (comma, TAB,
     semicolon or whitespace), rather than a card deck.  A path that is not a
     readable regular file is an error here (a FIFO is never opened)."""
-    from .inputs import head, split_lines
+    from lieng.io.inputs import head, split_lines
 
     p = Path(path)
     first = split_lines(head(p))[0]
@@ -119,10 +126,10 @@ def _is_table(path) -> bool:
 
 
 def _run_trc(args) -> int:
-    from .cards import read_deck
-    from .listing import trc_listing
-    from .outputs import check_outdir, staged_outdir, write_csv, write_lines
-    from .trc import CSV_COLUMNS, read_csv, trc
+    from lieng.programs import read_deck
+    from lieng.programs.listing import trc_listing
+    from lieng.io.outputs import check_outdir, staged_outdir, write_csv, write_lines
+    from lieng.programs.trc import CSV_COLUMNS, read_csv, trc
 
     check_outdir(args.outdir, args.force)
     # one convention with diagnose: --fn / --fnv in Hz, the listing's --omnh / --omnv in rad/s
@@ -170,15 +177,15 @@ def _cell(v):
 
 
 def _deck_char(args):
-    from .cards import read_deck
+    from lieng.programs import read_deck
 
     deck = read_deck(args.deck, program=args.program)
     return deck, deck.xchl[: deck.n], deck.ychl[: deck.n]
 
 
 def _cycles(args) -> int:
-    from .cycles import find_cycles
-    from .outputs import dumps_json
+    from lieng.analysis.cycles import find_cycles
+    from lieng.io.outputs import dumps_json
 
     deck, x, y = _deck_char(args)
     res = find_cycles(x, y, mode=args.mode, dtheta=deck.dtheta, lookup=args.lookup)
@@ -196,8 +203,8 @@ def _cycles(args) -> int:
 
 
 def _sweep(args) -> int:
-    from .cycles import parse_range, sweep_dmu, sweep_v0
-    from .outputs import dumps_json
+    from lieng.analysis.cycles import parse_range, sweep_dmu, sweep_v0
+    from lieng.io.outputs import dumps_json
 
     deck, x, y = _deck_char(args)
     if args.dmu is not None:
@@ -226,7 +233,7 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
     """Read one record (a table, or a TRC deck whose OMNH gives fn) and
     diagnose it: what ``lieng diagnose RECORD`` computes (also a task of
     ``diagnose --batch``).  Returns the :class:`lieng.diagnose.Diagnosis`."""
-    from .diagnose import diagnose, read_record, record_from_trc_deck
+    from lieng.diagnose import diagnose, read_record, record_from_trc_deck
 
     if _is_table(data):
         rec = read_record(data, v0=v0, stiffness=stiffness)
@@ -240,8 +247,8 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
 def _write_diagnosis(d, outdir, force: bool, source: str, plots: bool) -> list:
     """diagnosis.json, report.md and the plots of one record, written into
     ``outdir`` all at once; returns the names written."""
-    from .diagnose.report import write_outputs
-    from .outputs import staged_outdir
+    from lieng.diagnose.report import write_outputs
+    from lieng.io.outputs import staged_outdir
 
     with staged_outdir(outdir, force) as tmp:
         names = write_outputs(d, tmp, source, plots=plots)
@@ -249,8 +256,8 @@ def _write_diagnosis(d, outdir, force: bool, source: str, plots: bool) -> list:
 
 
 def _diagnose(args) -> int:
-    from .diagnose.report import summary_lines
-    from .outputs import check_outdir, dumps_json
+    from lieng.diagnose.report import summary_lines
+    from lieng.io.outputs import check_outdir, dumps_json
 
     if args.batch is not None:
         return _diagnose_batch(args)
@@ -311,10 +318,10 @@ def _diagnose_batch(args) -> int:
     """``diagnose --batch DIR``: every record through the executor, each
     written to OUTDIR/<stem>/ as one ``lieng diagnose`` writes it, and
     OUTDIR/batch.csv; status 1 when a record failed."""
-    from .cycles import _progress
-    from .diagnose.report import summary_lines
-    from .executor import check_workers, open_executor, run_tasks
-    from .outputs import check_outdir, staged_outdir, write_csv
+    from lieng.analysis.cycles import _progress
+    from lieng.diagnose.report import summary_lines
+    from lieng.analysis.executor import check_workers, open_executor, run_tasks
+    from lieng.io.outputs import check_outdir, staged_outdir, write_csv
 
     if args.data is not None:
         raise LiengInputError(f"--batch {args.batch} and {args.data}: give one record or --batch DIR, not both")
@@ -359,10 +366,10 @@ def _diagnose_batch(args) -> int:
 
 
 def _map(args) -> int:
-    from .cycles import parse_range
-    from .executor import check_workers, open_executor
-    from .outputs import check_outdir, dumps_json, staged_outdir, write_csv
-    from .regime_map import AXES, REGIMES, check_grid, regime_map
+    from lieng.analysis.cycles import parse_range
+    from lieng.analysis.executor import check_workers, open_executor
+    from lieng.io.outputs import check_outdir, dumps_json, staged_outdir, write_csv
+    from lieng.analysis.regime_map import AXES, REGIMES, check_grid, regime_map
 
     check_outdir(args.outdir, args.force)
     check_workers(args.workers, args.scheduler)
@@ -381,7 +388,7 @@ def _map(args) -> int:
                    for v, p, code, r, o, s, u, n in res.points()))
         write_csv(tmp / "v_oc.csv", [col, "v_oc [mm/s]"],
                   ((float(a), None if math.isnan(b) else float(b)) for a, b in zip(res.values, res.v_oc)))
-        plots = [] if args.no_plots else [_plots("regime_map_plot", res, tmp, Path(args.deck).name)]
+        plots = [] if args.no_plots else [_map_plot(res, tmp, Path(args.deck).name)]
     if args.json:
         print(dumps_json(res.summary(), indent=2))
     elif not args.quiet:
@@ -403,8 +410,8 @@ def _map(args) -> int:
 
 
 def _synth(args) -> int:
-    from .outputs import check_outfile, replace_file
-    from .synth import MAX_CYCLES, synthesize
+    from lieng.io.outputs import check_outfile, replace_file
+    from lieng.analysis.synth import MAX_CYCLES, synthesize
 
     out = check_outfile(args.output, args.force)
     if args.seed is not None and not 0 <= args.seed < 2**63:
@@ -424,8 +431,8 @@ def _synth(args) -> int:
 
 
 def _figures(args) -> int:
-    from .figures import figures
-    from .outputs import check_outdir, staged_outdir
+    from lieng.analysis.figures import figures
+    from lieng.io.outputs import check_outdir, staged_outdir
 
     check_outdir(args.outdir, args.force)
     with staged_outdir(args.outdir, args.force) as tmp:
@@ -441,8 +448,8 @@ PRELOAD_MAX = 10_000.0
 
 
 def _twodof(args) -> int:
-    from .outputs import all_finite, check_outdir, dumps_json
-    from .twodof import T_END_MAX, T_END_MIN, compare, write_outputs
+    from lieng.io.outputs import all_finite, check_outdir, dumps_json
+    from lieng.analysis.twodof import T_END_MAX, T_END_MIN, compare, write_outputs
 
     if args.outdir is not None:
         check_outdir(args.outdir, args.force)
@@ -471,7 +478,7 @@ def _twodof(args) -> int:
         raise LiengInputError(f"--preload {args.preload:g}, --rpm {args.rpm:g}: the simulation leaves the range of "
                               f"the model (a non-finite result); use values nearer the paper's (80 N, 0.1 rpm)")
     if args.outdir is not None:
-        from .outputs import staged_outdir
+        from lieng.io.outputs import staged_outdir
 
         with staged_outdir(args.outdir, args.force) as tmp:
             write_outputs(res, keep, tmp)
@@ -537,7 +544,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="lieng",
         description="Antoniou's 1971 Lienard-plane stick-slip programs, restored.",
     )
-    from . import __version__
+    from lieng import __version__
 
     p.add_argument("--version", action="version", version=f"lieng {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")

@@ -2,7 +2,7 @@
 
 Every generator in ``tests/generators/`` (written without reading the
 diagnosis code: a different friction law, stick handling and noise each)
-and ``lieng.synth`` writes records with one hidden case (five effects and
+and ``lieng.analysis.synth`` writes records with one hidden case (five effects and
 ``none``) and one nuisance (hum, drift, spikes, quantisation, coarse
 sampling, ``--fn`` off by 5 %); each is diagnosed as a user would (the
 written file and the generator's command-line options, through the same
@@ -43,7 +43,7 @@ class SynthGen:
     def write_record(case, seed, outdir, nuisance="clean"):
         import numpy as np
 
-        from lieng.synth import synthesize
+        from lieng.analysis.synth import synthesize
 
         rec = synthesize(case, seed)
         g = np.random.default_rng(1000 + seed)

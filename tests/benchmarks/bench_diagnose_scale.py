@@ -34,7 +34,7 @@ def run(args):
 
 
 def main():
-    from lieng.synth import synthesize
+    from lieng.analysis.synth import synthesize
 
     base = synthesize("none", 3, cycles=20)
     dt = float(base.t[1] - base.t[0])

@@ -17,9 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from lieng.cards import read_deck
-from lieng.executor import open_executor
-from lieng.regime_map import regime_map
+from lieng.programs import read_deck
+from lieng.analysis.executor import open_executor
+from lieng.analysis.regime_map import regime_map
 
 DECK = Path(__file__).resolve().parents[2] / "cards" / "figures" / "fig2_28.dat"
 

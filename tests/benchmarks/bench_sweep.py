@@ -101,7 +101,7 @@ def main():
 
     print(f"sweep of {len(v0s)} driving velocities (exact mode, 120-point scan and brentq each)")
     print(f"  {'implementation':<44} {'time (s)':>9} {'ratio':>8}  largest relative error of X_right")
-    print(f"  {'compiled core (lieng.cycles.sweep_v0)':<44} {best:9.3f} {1.0:7.1f}x  {err(mine)}")
+    print(f"  {'compiled core (lieng.analysis.cycles.sweep_v0)':<44} {best:9.3f} {1.0:7.1f}x  {err(mine)}")
     for tol in (1e-7, 1e-10, 1e-12):
         t0 = time.perf_counter()
         ref = {v0: ivp_cycles(*cycles.move_to_v0(x, v, v0), tol=tol) for v0 in sub}

@@ -87,7 +87,7 @@ def main():
     d_vec = np.abs(numpy_trc(t, x, xn, omnh, omnv)[0] - vln).max() / scale
     d_loop = np.abs(numpy_trc(t, x, xn, omnh, omnv, belfit_reference)[0] - vln).max() / scale
     print(f"TRC, {n} points, 8 BELFIT passes (best of repeated runs)")
-    print(f"  compiled core (lieng.trc, incl. Python checks): {t_core * 1e3:8.3f} ms  (target < 1 ms)")
+    print(f"  compiled core (lieng.programs.trc, incl. Python checks): {t_core * 1e3:8.3f} ms  (target < 1 ms)")
     print(f"  NumPy, vectorised BELFIT (batched QR):          {t_vec * 1e3:8.3f} ms  {t_vec / t_core:6.1f}x the core;"
           f" smoothed velocity within {d_vec:.1e} of the core's (relative to its largest)")
     print(f"  NumPy, polyfit per window in a Python loop:     {t_loop * 1e3:8.3f} ms  {t_loop / t_core:6.1f}x the core;"

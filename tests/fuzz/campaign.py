@@ -45,8 +45,8 @@ def _preimport():
     """Import what the runs use before forking, so that each child starts warm."""
     import importlib
 
-    for m in ("lieng.cli", "lieng.lieng1", "lieng.mlien", "lieng.trc", "lieng.cycles", "lieng.synth",
-              "lieng.twodof", "lieng.graf", "lieng.figures", "lieng.listing", "lieng.outputs", "lieng.diagnose",
+    for m in ("lieng.cli", "lieng.programs.lieng1", "lieng.programs.mlien", "lieng.programs.trc", "lieng.analysis.cycles", "lieng.analysis.synth",
+              "lieng.analysis.twodof", "lieng.programs.graf", "lieng.analysis.figures", "lieng.programs.listing", "lieng.io.outputs", "lieng.diagnose",
               "lieng.diagnose.report", "matplotlib.pyplot", "scipy.signal", "scipy.optimize"):
         try:
             importlib.import_module(m)

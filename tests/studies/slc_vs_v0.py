@@ -4,7 +4,7 @@ Ch. 2.4.2.1 d (seed lines 2663-2665) says: "As vo increases the stable
 limiting cycle decreases in size while the unstable limiting cycle
 increases", until the two coincide at v_oc.  On Fig. 2.21's own shape the
 S.L.C. grows instead (docs/claims.md, row 4).  This study sweeps v0 with the
-exact return map (`lieng.cycles.sweep_v0`) over a family of characteristics
+exact return map (`lieng.analysis.cycles.sweep_v0`) over a family of characteristics
 of Fig. 2.21's shape (tests/conftest.py: static peak FS = 10 over a stick part
 of width 0.5, a falling part to the kinetic minimum FM at sliding speed UM, a
 rising part of slope C beyond it) and classifies each shape:

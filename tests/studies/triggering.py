@@ -45,7 +45,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from conftest import CARDS, thesis_characteristic  # noqa: E402
 
 from lieng import cycles  # noqa: E402
-from lieng.mlien import Deck, run_deck  # noqa: E402
+from lieng.programs.mlien import Deck, run_deck  # noqa: E402
 
 
 def fig_2_21_at(v0: float):

@@ -17,14 +17,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import LiengInputError
-from ..outputs import finite_json as _finite
-from .baseline import Params, calibrate_fn, fit_baseline
-from .decide import ALPHA, FN_RATIO, calibrate, decide, fn_needed, misfit, null_replicates
-from .evidence import CANDIDATES, MARGIN, ONE_SIDED, RIG, SLIDING, sliding_statistics, statistics, y_on_motion
-from .extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset
-from .read import Record, read_record, record_from_arrays, record_from_trc_deck
-from .segment import estimate_fn, find_cycles, prepare, slip_seconds
+from lieng.errors import LiengInputError
+from lieng.io.outputs import finite_json as _finite
+from lieng.diagnose.baseline import Params, calibrate_fn, fit_baseline
+from lieng.diagnose.decide import ALPHA, FN_RATIO, calibrate, decide, fn_needed, misfit, null_replicates
+from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, RIG, SLIDING, sliding_statistics, statistics, y_on_motion
+from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset
+from lieng.diagnose.read import Record, read_record, record_from_arrays, record_from_trc_deck
+from lieng.diagnose.segment import estimate_fn, find_cycles, prepare, slip_seconds
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -112,7 +112,7 @@ def _stiffness_from_sticks(pr):
     force in N times 1000, so its rise over the drive while the slider sticks
     is the stiffness): the median stick slope over the drive, or in steady
     sliding the ramp after each reversal (its steepest fifth)."""
-    from .segment import stick_ratios
+    from lieng.diagnose.segment import stick_ratios
 
     c = find_cycles(pr, None)
     if c.n >= 4:

@@ -35,10 +35,10 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 
-from .. import _core
-from ..errors import LiengInputError
-from .. import status as st
-from .segment import Cycles, Prepared, slip_seconds, stick_ratios
+from lieng import _core
+from lieng.errors import LiengInputError
+from lieng import status as st
+from lieng.diagnose.segment import Cycles, Prepared, slip_seconds, stick_ratios
 
 __all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "model_y", "calibrate_fn"]
 
@@ -265,7 +265,7 @@ def stick_creep(pr: Prepared, c: Cycles) -> tuple:
 
 def trough_mean(pr, c_fn, x):
     """Mean trough of a simulated trace (cycles found the record's way)."""
-    from .segment import find_cycles
+    from lieng.diagnose.segment import find_cycles
 
     cc = find_cycles(pr_like(pr, x), c_fn)
     if cc.n == 0:
@@ -320,7 +320,7 @@ def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6) -> Params:
 
 
 def _cycles_of(pr, p, fn) -> int:
-    from .segment import find_cycles
+    from lieng.diagnose.segment import find_cycles
 
     xs, _, _ = simulate(pr, p, fn)
     return find_cycles(pr_like(pr, xs), fn).n
@@ -374,7 +374,7 @@ def calibrate_fn(pr: Prepared, f0: float, iters: int = 4, bound: float = 0.4) ->
     ``f0``, within ``bound`` of it.  Read on the record's first
     CALIBRATION_SAMPLES samples.  None when the slips or the baseline
     cannot be read or simulated."""
-    from .segment import find_cycles, head
+    from lieng.diagnose.segment import find_cycles, head
 
     # a fixed-length part of a long record: as many slips as fix the duration, at a fixed cost
     pr = head(pr, CALIBRATION_SAMPLES)

@@ -38,11 +38,11 @@ import time
 
 import numpy as np
 
-from ..errors import LiengInputError
-from .baseline import Params, pr_like, simulate
-from .evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, RIG, UPPER, statistics
-from .read import noise_level
-from .segment import Prepared, find_cycles
+from lieng.errors import LiengInputError
+from lieng.diagnose.baseline import Params, pr_like, simulate
+from lieng.diagnose.evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, RIG, UPPER, statistics
+from lieng.diagnose.read import noise_level
+from lieng.diagnose.segment import Prepared, find_cycles
 
 __all__ = ["ALPHA", "FN_RATIO", "fn_needed", "null_replicates", "calibrate", "fn_sensitivity", "decide", "misfit"]
 

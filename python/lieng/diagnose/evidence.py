@@ -73,8 +73,8 @@ import math
 
 import numpy as np
 
-from .baseline import slip_friction
-from .segment import Cycles, Prepared, slip_arcs, slip_seconds, stick_ratios
+from lieng.diagnose.baseline import slip_friction
+from lieng.diagnose.segment import Cycles, Prepared, slip_arcs, slip_seconds, stick_ratios
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "lowpass"]
 

@@ -39,10 +39,10 @@ import math
 
 import numpy as np
 
-from ..errors import LiengInputError
-from .baseline import Params, identify, model_y, pr_like, run_slice, simulate, slip_friction
-from .evidence import _stick_series, drive_scan, level_fit, lowpass, stick_times
-from .segment import Cycles, Prepared, find_cycles, first_below
+from lieng.errors import LiengInputError
+from lieng.diagnose.baseline import Params, identify, model_y, pr_like, run_slice, simulate, slip_friction
+from lieng.diagnose.evidence import _stick_series, drive_scan, level_fit, lowpass, stick_times
+from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
 
 __all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds"]
 

@@ -30,8 +30,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import LiengInputError
-from ..table import read_table
+from lieng.errors import LiengInputError
+from lieng.io.table import read_table
 
 __all__ = ["Record", "read_record", "record_from_trc_deck", "record_from_arrays", "MAX_SAMPLES"]
 
@@ -412,7 +412,7 @@ def record_from_trc_deck(path, v0: float | None) -> tuple[Record, float]:
     T, X, XN (s, mm, mm; XN becomes y) resampled linearly onto an even grid
     at the median reading interval.  Returns the record and the natural
     frequency the deck gives (OMNH, rad/s, in Hz)."""
-    from ..cards import read_deck
+    from lieng.programs import read_deck
 
     deck = read_deck(path, program="trc")
     t, x, xn = deck.calibrated()

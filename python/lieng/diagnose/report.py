@@ -10,10 +10,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .baseline import slip_friction
-from ..outputs import dumps_json, plot_name
-from .evidence import CANDIDATES
-from .extend import METRIC
+from lieng.diagnose.baseline import slip_friction
+from lieng.io.outputs import dumps_json, plot_name
+from lieng.diagnose.evidence import CANDIDATES
+from lieng.diagnose.extend import METRIC
 
 __all__ = ["write_outputs", "summary_lines", "PLOTS"]
 
@@ -129,7 +129,7 @@ def _plots(d, out: Path, source: str) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..graf import finish
+    from lieng.programs.graf import finish
 
     pr, c, fn = d.plot["pr"], d.plot["c"], d.plot["fn"]
     cap = f"lieng diagnose {Path(source).name}: effect {d.effect}"
@@ -163,8 +163,8 @@ def _plots(d, out: Path, source: str) -> None:
     ax.plot(t[c.trough_i], x[c.trough_i], "o", ms=3, color="C2", label="record: trough")
     xb = d.plot.get("x_base")
     if xb is not None:
-        from .baseline import pr_like
-        from .segment import find_cycles
+        from lieng.diagnose.baseline import pr_like
+        from lieng.diagnose.segment import find_cycles
 
         cb = find_cycles(pr_like(pr, xb), fn)
         ax.plot(t[cb.peak_i], xb[cb.peak_i], "x", ms=4, color="C1", label="baseline: peak")

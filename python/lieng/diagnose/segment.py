@@ -26,8 +26,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import LiengInputError
-from .read import Record, noise_level
+from lieng.errors import LiengInputError
+from lieng.diagnose.read import Record, noise_level
 
 __all__ = ["Stroke", "Prepared", "Cycles", "prepare", "find_cycles", "estimate_fn", "smooth"]
 

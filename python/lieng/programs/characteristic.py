@@ -14,10 +14,10 @@ from typing import Callable
 
 import numpy as np
 
-from . import _core
-from .cards import Card, card_location, write_cards
-from .errors import CentreUndefined, LiengInputError
-from . import status as st
+from lieng import _core
+from lieng.io.cards import Card, card_location, write_cards
+from lieng.errors import CentreUndefined, LiengInputError
+from lieng import status as st
 
 __all__ = ["Centre", "check_characteristic", "centre_of_symmetry", "api_locator", "NMAX_DECK",
            "CHAR_CARDS", "DeckBase"]

@@ -23,9 +23,9 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from . import _core
-from .errors import LiengInputError
-from . import status as st
+from lieng import _core
+from lieng.errors import LiengInputError
+from lieng import status as st
 
 __all__ = ["RigParams", "matrices", "modal_frequencies", "identify_k2", "simulate", "Simulation", "metrics",
            "onedof", "compare", "PAPER", "rpm_to_belt", "write_outputs"]
@@ -275,7 +275,7 @@ def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, param
 def write_outputs(res: dict, sims: dict, outdir) -> None:
     """Plots (angle, forces, spectrum: 2-DoF beside 1-DoF, the paper's values
     marked) and ``twodof.json`` into ``outdir``."""
-    from .outputs import dumps_json
+    from lieng.io.outputs import dumps_json
     from pathlib import Path
 
     import matplotlib
@@ -283,7 +283,7 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .graf import finish
+    from lieng.programs.graf import finish
 
     out = Path(outdir)
     (out / "twodof.json").write_text(dumps_json(res, indent=2) + "\n", encoding="utf-8")

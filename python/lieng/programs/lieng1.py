@@ -26,12 +26,12 @@ from typing import Sequence
 
 import numpy as np
 
-from . import _core
-from .cards import Card, read_cards
+from lieng import _core
+from lieng.io.cards import Card, read_cards
 from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
                              char_from_values, check_characteristic)
-from .errors import CentreUndefined, LiengInputError
-from . import status as st
+from lieng.errors import CentreUndefined, LiengInputError
+from lieng import status as st
 
 __all__ = ["LAYOUT", "Deck", "Lieng1Result", "lieng1", "run_deck", "LOOKUP_MODES", "lookup_code"]
 

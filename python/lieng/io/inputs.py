@@ -15,7 +15,7 @@ import re
 import stat
 from pathlib import Path
 
-from .errors import LiengInputError
+from lieng.errors import LiengInputError
 
 __all__ = ["read_text", "head", "split_lines", "MAX_BYTES"]
 

@@ -37,7 +37,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Iterable, Sequence
 
-from .errors import LiengInputError
+from lieng.errors import LiengInputError
 
 __all__ = ["MANIFEST", "check_outdir", "check_outfile", "staged_outdir", "write_csv", "write_lines",
            "dumps_json", "finite_json", "all_finite", "replace_file",

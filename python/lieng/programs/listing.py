@@ -9,7 +9,7 @@ it; trailing blanks are dropped, as a printer does not print them.
 
 from __future__ import annotations
 
-from .cards import write_record
+from lieng.io.cards import write_record
 
 __all__ = ["FORMATS_LIENG1", "FORMATS_MLIEN", "FORMATS_TRC", "lieng1_listing", "mlien_listing", "trc_listing"]
 
@@ -91,15 +91,15 @@ def lieng1_listing(deck, result) -> list[str]:
 
     Parameters
     ----------
-    deck : lieng.lieng1.Deck
-    result : lieng.lieng1.Lieng1Result
+    deck : lieng.programs.lieng1.Deck
+    result : lieng.programs.lieng1.Lieng1Result
 
     Returns
     -------
     list of str
         The printed lines, in the order the program writes them.
     """
-    from .lieng1 import phi_of
+    from lieng.programs.lieng1 import phi_of
 
     out: list[str] = []
     key = deck.key
@@ -134,7 +134,7 @@ def mlien_listing(deck, result) -> list[str]:
     trial-run lines R, X, Y, T, XMDL, YMDL, L (FORMAT 1010) at
     L = 1, 9, 19, ..., 2999.
     """
-    from .mlien import trial_run_points
+    from lieng.programs.mlien import trial_run_points
 
     out: list[str] = []
     if deck.key != 0:

@@ -32,7 +32,7 @@ from typing import Callable, Iterator, Sequence
 
 import numpy as np
 
-from .errors import LiengInputError
+from lieng.errors import LiengInputError
 
 __all__ = ["InProcess", "open_executor", "run_tasks", "check_workers", "default_workers", "MAX_WORKERS",
            "CONNECT_TIMEOUT"]

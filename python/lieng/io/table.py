@@ -14,8 +14,8 @@ from typing import Sequence
 
 import numpy as np
 
-from .errors import LiengInputError
-from .inputs import read_text, split_lines
+from lieng.errors import LiengInputError
+from lieng.io.inputs import read_text, split_lines
 
 __all__ = ["read_columns", "read_table", "Table"]
 

@@ -30,13 +30,13 @@ from typing import Sequence
 
 import numpy as np
 
-from . import _core
-from .cards import Card, read_cards
+from lieng import _core
+from lieng.io.cards import Card, read_cards
 from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
                              char_from_values, check_characteristic)
-from .errors import LiengInputError
-from . import status as st
-from .lieng1 import check_growth, lookup_code
+from lieng.errors import LiengInputError
+from lieng import status as st
+from lieng.programs.lieng1 import check_growth, lookup_code
 
 __all__ = ["LAYOUT", "TRIGGER_LISTING", "Deck", "MlienResult", "mlien", "run_deck", "trial_run_points"]
 

@@ -14,13 +14,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .cards import read_deck
-from .errors import LiengInputError
+from lieng.programs import read_deck
+from lieng.errors import LiengInputError
 
 __all__ = ["FIGURES", "figures", "CARDS"]
 
 #: the demo and figure decks installed with the package (the project's cards/)
-CARDS = Path(__file__).resolve().parent / "cards"
+CARDS = Path(__file__).resolve().parents[1] / "cards"
 
 #: figure -> (deck(s) in the cards directory, caption)
 FIGURES = {
@@ -60,7 +60,7 @@ def _fig(ncols=1):
 
 
 def _save(fig, path: Path, caption: str) -> Path:
-    from .graf import save
+    from lieng.programs.graf import save
 
     fig.text(0.01, 0.01, caption, fontsize=7.5, color="0.25", wrap=True)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
@@ -80,7 +80,7 @@ def _phase(ax, res, title, every=5):
 
 
 def _lieng1(cards: Path, name: str, ntraj=9, npts=3000):
-    from .lieng1 import run_deck
+    from lieng.programs.lieng1 import run_deck
 
     return run_deck(read_deck(cards / name, program="lieng1"), ntraj=ntraj, npts=npts)
 
@@ -94,7 +94,7 @@ def _plot_phase_figs(cards, decks, path, caption, ntraj):
 
 
 def _sweep_fig(cards, name, path, caption, kind):
-    from .cycles import sweep_dmu, sweep_v0
+    from lieng.analysis.cycles import sweep_dmu, sweep_v0
 
     deck = read_deck(cards / name, program="lieng1")
     x, y = deck.xchl[: deck.n], deck.ychl[: deck.n]
@@ -132,7 +132,7 @@ def _a9(cards, name, path, caption):
 
 
 def _a9_7(cards, name, path, caption):
-    from .mlien import run_deck
+    from lieng.programs.mlien import run_deck
 
     deck = read_deck(cards / name, program="mlien")
     res = run_deck(deck)

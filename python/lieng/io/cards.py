@@ -30,13 +30,12 @@ import math
 import re
 from dataclasses import dataclass
 from decimal import ROUND_HALF_EVEN, Context, Decimal, DecimalException
-from pathlib import Path
+
 from typing import Iterable, Sequence
 
 import numpy as np
 
-from .errors import LiengInputError
-from .inputs import read_text, split_lines
+from lieng.errors import LiengInputError
 
 #: a deck is at most a few hundred cards of 80 columns
 MAX_DECK_BYTES = 1024**2
@@ -528,42 +527,3 @@ def write_cards(values: dict, layout: Sequence[Card]) -> list[str]:
                 raise LiengInputError(f"card {cno} ({name}): {exc}") from None
         lines.append("".join(fields).rstrip())
     return lines
-
-
-#: Programs with a deck layout, and the module that holds each one's ``Deck``.
-PROGRAM_MODULES = {"lieng1": "lieng.lieng1", "mlien": "lieng.mlien", "trc": "lieng.trc"}
-
-
-def _deck_class(program: str):
-    import importlib
-
-    if program not in PROGRAM_MODULES:
-        raise LiengInputError(f"unknown program {program!r}: choose one of {', '.join(sorted(PROGRAM_MODULES))}")
-    return importlib.import_module(PROGRAM_MODULES[program]).Deck
-
-
-def read_deck(path, program: str = "lieng1"):
-    """Read a card deck of one of the programs.
-
-    Parameters
-    ----------
-    path : str or path-like
-        The deck, one card per line.
-    program : {"lieng1", "mlien", "trc"}
-        Whose deck layout to use.
-
-    Returns
-    -------
-    deck
-        The program's deck object (e.g. :class:`lieng.lieng1.Lieng1Deck`)
-        with the values as the 1971 program would have read them.
-    """
-    deck_class = _deck_class(program)
-    text = read_text(path, encoding="ascii", what="deck", max_bytes=MAX_DECK_BYTES)
-    # a form feed or a TAB inside a card is a character of that card, reported with its columns
-    return deck_class.from_lines(split_lines(text) if text else [], source=str(path))
-
-
-def write_deck(deck, path) -> None:
-    """Write a deck object (from :func:`read_deck` or built by hand) to ``path``."""
-    Path(path).write_text("\n".join(deck.to_lines()) + "\n", encoding="ascii")

@@ -34,11 +34,11 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from . import _core
-from .characteristic import centre_of_symmetry, check_characteristic
-from .errors import LiengInputError
-from . import status as st
-from .lieng1 import lookup_code
+from lieng import _core
+from lieng.programs.characteristic import centre_of_symmetry, check_characteristic
+from lieng.errors import LiengInputError
+from lieng import status as st
+from lieng.programs.lieng1 import lookup_code
 
 __all__ = ["Cycle", "CyclesResult", "return_map", "find_cycles", "move_to_v0", "scale_static_peak",
            "set_rising_slope", "stick_part", "sweep_v0", "sweep_dmu", "SweepResult", "first_critical", "merged"]

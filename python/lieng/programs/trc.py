@@ -45,11 +45,11 @@ from typing import Sequence
 
 import numpy as np
 
-from . import _core
-from .cards import Card, card_location, read_cards, write_cards
-from .errors import LiengInputError
-from . import status as st
-from .table import read_columns
+from lieng import _core
+from lieng.io.cards import Card, card_location, read_cards, write_cards
+from lieng.errors import LiengInputError
+from lieng import status as st
+from lieng.io.table import read_columns
 
 __all__ = ["Deck", "TrcResult", "trc", "calibrate", "belfit", "lsqfit", "read_csv", "CSV_COLUMNS",
            "NMIN", "NMAX_DECK", "origin_fit"]

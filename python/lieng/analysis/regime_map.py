@@ -63,11 +63,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .characteristic import centre_of_symmetry, check_characteristic
+from lieng.programs.characteristic import centre_of_symmetry, check_characteristic
 from .cycles import (_mode_args, _progress, find_cycles, first_critical, merged, move_to_v0, scale_static_peak,
                      set_rising_slope, stick_part)
-from .errors import LiengInputError
-from .executor import run_tasks
+from lieng.errors import LiengInputError
+from lieng.analysis.executor import run_tasks
 
 __all__ = ["Regime", "REGIMES", "AXES", "RegimeMap", "regime_map", "classify", "characteristic_at", "check_grid",
            "MAX_POINTS"]

@@ -1,0 +1,1 @@
+"""The modern analyses built on the restored programs: limit cycles and sweeps (cycles), regime maps (regime_map), the thesis figures (figures), the 2-DoF rig (twodof), synthetic records (synth), and where independent tasks run (executor)."""
