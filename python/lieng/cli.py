@@ -59,56 +59,55 @@ def _plots(name, res, outdir, *more):
     return getattr(graf, name)(res, outdir, *more)
 
 
-def _run_lieng1(args) -> int:
-    from lieng.programs import read_deck
-    from lieng.programs.lieng1 import run_deck
-    from lieng.programs.listing import lieng1_listing
+def _run_program(args, program: str, tables, plots: str, summary) -> int:
+    """``lieng run lieng1|mlien``: check the output directory, read and run the deck, write the listing, the
+    CSV ``tables(res)`` ((name, header, rows) each) and the plots together, print ``summary(deck, res)``."""
+    import importlib
+
     from lieng.io.outputs import check_outdir, staged_outdir, write_csv, write_lines
+    from lieng.programs import listing, read_deck
 
     check_outdir(args.outdir, args.force)
-    deck = read_deck(args.deck, program="lieng1")
-    res = run_deck(deck, lookup=args.lookup)
-    listing = lieng1_listing(deck, res)
+    deck = read_deck(args.deck, program=program)
+    res = importlib.import_module(f"lieng.programs.{program}").run_deck(deck, lookup=args.lookup)
+    lines = getattr(listing, f"{program}_listing")(deck, res)
+    tabs = list(tables(res))
     with staged_outdir(args.outdir, args.force) as tmp:
-        write_lines(tmp / "listing.txt", listing)
-        rows = (
-            (k + 1, i + 1, float(res.x[k, i]), float(res.y[k, i]), float(res.t[k, i]))
-            for k in range(res.ntraj)
-            for i in range(res.npts)
-        )
-        write_csv(tmp / "trajectories.csv", ["traj", "i", "x", "y", "t"], rows)
-        plots = [] if args.no_plots else _plots("lieng1_plots", res, tmp)
+        write_lines(tmp / "listing.txt", lines)
+        for name, header, rows in tabs:
+            write_csv(tmp / name, header, rows)
+        written = [] if args.no_plots else _plots(plots, res, tmp)
     if not args.quiet:
-        print(f"lieng1: {res.ntraj} trajectories x {res.npts} points; centre of symmetry "
-              f"XMDL = {res.xmdl:.6g}, YMDL = VO = {res.ymdl:.6g}")
-        print(f"wrote {Path(args.outdir) / 'listing.txt'}, trajectories.csv" + "".join(f", {p.name}" for p in plots))
+        print(summary(deck, res))
+        print(f"wrote {Path(args.outdir) / 'listing.txt'}" + "".join(f", {name}" for name, _, _ in tabs)
+              + "".join(f", {p.name}" for p in written))
     return 0
+
+
+def _run_lieng1(args) -> int:
+    def tables(res):
+        rows = ((k + 1, i + 1, float(res.x[k, i]), float(res.y[k, i]), float(res.t[k, i]))
+                for k in range(res.ntraj) for i in range(res.npts))
+        return [("trajectories.csv", ["traj", "i", "x", "y", "t"], rows)]
+
+    return _run_program(args, "lieng1", tables, "lieng1_plots",
+                        lambda deck, res: f"lieng1: {res.ntraj} trajectories x {res.npts} points; centre of "
+                                          f"symmetry XMDL = {res.xmdl:.6g}, YMDL = VO = {res.ymdl:.6g}")
 
 
 def _run_mlien(args) -> int:
-    from lieng.programs import read_deck
-    from lieng.programs.listing import mlien_listing
-    from lieng.programs.mlien import run_deck
-    from lieng.io.outputs import check_outdir, staged_outdir, write_csv, write_lines
+    def tables(res):
+        return [("trajectories.csv", ["traj", "i", "x", "y", "t"],
+                 ((1, i + 1, float(res.x[i]), float(res.y[i]), float(res.t[i])) for i in range(res.npts))),
+                ("characteristic_last.csv", ["x", "y"],
+                 ((float(a), float(b)) for a, b in zip(res.xchl_last, res.ychl_last)))]
 
-    check_outdir(args.outdir, args.force)
-    deck = read_deck(args.deck, program="mlien")
-    res = run_deck(deck, lookup=args.lookup)
-    listing = mlien_listing(deck, res)
-    with staged_outdir(args.outdir, args.force) as tmp:
-        write_lines(tmp / "listing.txt", listing)
-        write_csv(tmp / "trajectories.csv", ["traj", "i", "x", "y", "t"],
-                  ((1, i + 1, float(res.x[i]), float(res.y[i]), float(res.t[i])) for i in range(res.npts)))
-        write_csv(tmp / "characteristic_last.csv", ["x", "y"],
-                  ((float(a), float(b)) for a, b in zip(res.xchl_last, res.ychl_last)))
-        plots = [] if args.no_plots else _plots("mlien_plots", res, tmp)
-    if not args.quiet:
+    def summary(deck, res):
         trig = "card 83" if deck.trigger is not None else "listing values"
-        print(f"mlien: {res.npts} points from T = {res.t[0]:.6g} to {res.t[-1]:.6g}; VO(0) = {res.vo:.6g}, "
-              f"PHI = {res.phi:.6g}; triggering {res.trigger} ({trig})")
-        print(f"wrote {Path(args.outdir) / 'listing.txt'}, trajectories.csv, characteristic_last.csv"
-              + "".join(f", {p.name}" for p in plots))
-    return 0
+        return (f"mlien: {res.npts} points from T = {res.t[0]:.6g} to {res.t[-1]:.6g}; VO(0) = {res.vo:.6g}, "
+                f"PHI = {res.phi:.6g}; triggering {res.trigger} ({trig})")
+
+    return _run_program(args, "mlien", tables, "mlien_plots", summary)
 
 
 def _is_table(path) -> bool:

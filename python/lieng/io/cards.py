@@ -50,8 +50,6 @@ __all__ = [
     "deck_field",
     "read_cards",
     "write_cards",
-    "read_deck",
-    "write_deck",
     "card_location",
 ]
 

@@ -9,13 +9,13 @@ columns for a deck, the argument and index for the Python API).
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Callable
 
 import numpy as np
 
 from lieng import _core
-from lieng.io.cards import Card, card_location, write_cards
+from lieng.io.cards import Card, card_location, read_cards, write_cards
 from lieng.errors import CentreUndefined, LiengInputError
 from lieng import status as st
 
@@ -178,13 +178,32 @@ class DeckBase:
     card-and-column locations, writing, and PINPUT's missing checks.
 
     Subclasses are dataclasses with ``n``, ``dtheta``, ``xchl``, ``ychl``,
-    ``source`` and a class attribute ``layout``; they define ``scalars()``.
+    ``source``, a class attribute ``layout`` and a ``check()``; their other
+    scalar fields are the layout's fields of the same names.
     """
 
     layout: list = []
 
-    def scalars(self) -> dict:  # pragma: no cover - defined by each program
-        raise NotImplementedError
+    @classmethod
+    def from_lines(cls, lines, source: str = "deck"):
+        """Read the deck's cards; raises LiengInputError naming card and columns.  Each scalar field is the
+        card field of its name in capitals (``key`` <- KEY); ``extra(values)`` adds the others."""
+        v = read_cards(lines, cls.layout, source)
+        xchl, ychl = char_from_values(v)
+        kw = {f.name: v[f.name.upper()] for f in fields(cls) if f.name.upper() in v}
+        deck = cls(**kw, **cls.extra(v), xchl=xchl, ychl=ychl, source=source)
+        deck.check()
+        return deck
+
+    @classmethod
+    def extra(cls, values: dict) -> dict:
+        """Fields read from the cards other than the scalars of the same name (none by default)."""
+        return {}
+
+    def scalars(self) -> dict:
+        """``{card field: value}`` of the scalar fields (those with a field of the layout's name)."""
+        names = {n for card in self.layout for n in card.names}
+        return {f.name.upper(): getattr(self, f.name) for f in fields(self) if f.name.upper() in names}
 
     def values(self) -> dict:
         """``{field name: value}`` in the names of the layout."""
@@ -211,7 +230,9 @@ class DeckBase:
         return lambda kind, j: self.locate(f"{kind}({j})")
 
     def check_characteristic_fields(self) -> None:
-        """N in 3..200, DTHETA > 0, and the characteristic's own checks."""
+        """KEY a digit, N in 3..200, DTHETA > 0, and the characteristic's own checks."""
+        if not 0 <= self.key <= 9:
+            raise LiengInputError(f"{self.locate('KEY')}: KEY = {self.key} must be a digit 0-9")
         if not 3 <= self.n <= NMAX_DECK:
             hint = ""
             if self.n > NMAX_DECK:

@@ -22,14 +22,13 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, field
-from typing import Sequence
 
 import numpy as np
 
 from lieng import _core
-from lieng.io.cards import Card, read_cards
+from lieng.io.cards import Card
 from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
-                             char_from_values, check_characteristic)
+                             check_characteristic)
 from lieng.errors import CentreUndefined, LiengInputError
 from lieng import status as st
 
@@ -67,25 +66,8 @@ class Deck(DeckBase):
     program = "lieng1"
     layout = LAYOUT
 
-    @classmethod
-    def from_lines(cls, lines: Sequence[str], source: str = "deck") -> "Deck":
-        """Read the deck's cards; raises LiengInputError naming card and columns."""
-        v = read_cards(lines, LAYOUT, source)
-        xchl, ychl = char_from_values(v)
-        deck = cls(v["KEY"], v["XINCR"], v["YINCR"], v["N"], v["OMEGA"], v["AMPV0"], v["XINP"],
-                   v["YINP"], v["DTHETA"], xchl, ychl, source)
-        deck.check()
-        return deck
-
-    def scalars(self) -> dict:
-        return {"KEY": self.key, "XINCR": self.xincr, "YINCR": self.yincr, "N": self.n,
-                "OMEGA": self.omega, "AMPV0": self.ampv0, "XINP": self.xinp, "YINP": self.yinp,
-                "DTHETA": self.dtheta}
-
     def check(self) -> None:
         """The checks PINPUT lacked: KEY a digit, N in 3..200, the characteristic, DTHETA."""
-        if not 0 <= self.key <= 9:
-            raise LiengInputError(f"{self.locate('KEY')}: KEY = {self.key} must be a digit 0-9")
         self.check_characteristic_fields()
 
     def run(self, lookup: str = "listing") -> "Lieng1Result":

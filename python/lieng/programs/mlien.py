@@ -26,14 +26,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Sequence
 
 import numpy as np
 
 from lieng import _core
-from lieng.io.cards import Card, read_cards
+from lieng.io.cards import Card
 from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
-                             char_from_values, check_characteristic)
+                             check_characteristic)
 from lieng.errors import LiengInputError
 from lieng import status as st
 from lieng.programs.lieng1 import check_growth, lookup_code
@@ -73,27 +72,18 @@ class Deck(DeckBase):
     layout = LAYOUT
 
     @classmethod
-    def from_lines(cls, lines: Sequence[str], source: str = "deck") -> "Deck":
-        """Read the deck's cards; raises LiengInputError naming card and columns."""
-        v = read_cards(lines, LAYOUT, source)
-        xchl, ychl = char_from_values(v)
-        trig = tuple(v[k] for k in TRIGGER_CARD.names) if "OMINTR" in v else None
-        deck = cls(v["KEY"], v["N"], v["OMEGA"], v["AMPV0"], v["XINP"], v["YINP"], v["DTHETA"], v["M"],
-                   xchl, ychl, trig, source)
-        deck.check()
-        return deck
+    def extra(cls, values: dict) -> dict:
+        """The optional triggering card (83): ``trigger`` is None when it is absent."""
+        return {"trigger": tuple(values[k] for k in TRIGGER_CARD.names) if "OMINTR" in values else None}
 
     def scalars(self) -> dict:
-        v = {"KEY": self.key, "N": self.n, "OMEGA": self.omega, "AMPV0": self.ampv0, "XINP": self.xinp,
-             "YINP": self.yinp, "DTHETA": self.dtheta, "M": self.m}
+        v = super().scalars()
         if self.trigger is not None:
             v.update(zip(TRIGGER_CARD.names, self.trigger))
         return v
 
     def check(self) -> None:
         """The checks PINPUT and CHALIN lacked."""
-        if not 0 <= self.key <= 9:
-            raise LiengInputError(f"{self.locate('KEY')}: KEY = {self.key} must be a digit 0-9")
         self.check_characteristic_fields()
         if self.omega == 0:
             raise LiengInputError(f"{self.locate('OMEGA')}: OMEGA = 0: T(1) = PHI/OMEGA is undefined "
