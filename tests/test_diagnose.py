@@ -474,7 +474,7 @@ def test_a_second_mode_ringing_after_each_arrest_is_read():
     over the two natural periods after the trough, 0.05 D / 4 = 0.0125 D
     (the mean square of the decay over 2/fn is 1/16 of 0.05**2 D**2); the
     record itself as none of it."""
-    from lieng.diagnose.evidence import arrest_ringing
+    from lieng.diagnose.goodness import arrest_ringing
     from lieng.diagnose.segment import find_cycles, prepare
 
     rec = synthesize("none", 3)

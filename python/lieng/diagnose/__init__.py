@@ -21,7 +21,9 @@ from lieng.errors import LiengInputError
 from lieng.io.outputs import finite_json as _finite
 from lieng.diagnose.baseline import Params, calibrate_fn, fit_baseline
 from lieng.diagnose.decide import ALPHA, FN_RATIO, calibrate, decide, fn_needed, misfit, null_replicates
-from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, RIG, SLIDING, sliding_statistics, statistics, y_on_motion
+from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics
+from lieng.diagnose.goodness import RIG
+from lieng.diagnose.signals import y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset
 from lieng.diagnose.read import Record, read_record, record_from_arrays, record_from_trc_deck
 from lieng.diagnose.segment import estimate_fn, find_cycles, prepare, slip_seconds

@@ -40,7 +40,8 @@ import numpy as np
 
 from lieng.errors import LiengInputError
 from lieng.diagnose.baseline import Params, pr_like, simulate
-from lieng.diagnose.evidence import CANDIDATES, GOF, GOF_MARGIN, MARGIN, ONE_SIDED, RIG, UPPER, statistics
+from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, UPPER, statistics
+from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 

@@ -74,7 +74,10 @@ import math
 import numpy as np
 
 from lieng.diagnose.baseline import slip_friction
-from lieng.diagnose.segment import Cycles, Prepared, slip_arcs, slip_seconds, stick_ratios
+from lieng.diagnose.goodness import goodness
+from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit, lowpass, position_anova,
+                                     spectral_line, y_locked)
+from lieng.diagnose.segment import Cycles, Prepared, slip_arcs, stick_ratios
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "lowpass"]
 
@@ -104,34 +107,6 @@ MARGIN = {"load_variation": 0.05, "twin_branch": 0.05, "static_ageing": 0.05, "t
 #: misreads (their shape beyond its replicates for another reason: a wrong fn,
 #: a second mode); it is reported, not named
 UPPER = {"twin_branch": 0.5}
-
-
-def lowpass(y, dt, fcut):
-    """Zero the spectrum above fcut (FFT), keeping the mean."""
-    f = np.fft.rfftfreq(y.size, dt)
-    Y = np.fft.rfft(y - y.mean())
-    Y[f > fcut] = 0
-    return np.fft.irfft(Y, y.size) + y.mean()
-
-
-def _jackknife(values_fn, n_units, groups=10):
-    """Jackknife standard error of values_fn(mask of units kept), leaving out
-    contiguous blocks of units (slips or cycles in time order), so that a
-    scatter correlated from cycle to cycle (a real rig's wander) widens it."""
-    g = min(groups, n_units)
-    if g < 3:
-        return math.inf
-    parts = np.array_split(np.arange(n_units), g)
-    est = []
-    for part in parts:
-        keep = np.ones(n_units, bool)
-        keep[part] = False
-        est.append(values_fn(keep))
-    est = np.asarray(est, float)
-    est = est[np.isfinite(est)]
-    if est.size < 3:
-        return math.inf
-    return float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
 
 
 def slip_reverse_construction(pr: Prepared, c: Cycles, fn: float, k: int):
@@ -291,63 +266,6 @@ def _ageing(pr: Prepared, c: Cycles):
     return float(coef[1] * rng), se * rng, rng
 
 
-def spectral_line(sig, dt, fmin, f0=None):
-    """The strongest line above fmin and, with f0, off the harmonics of f0
-    (by more than a bin): (frequency, amplitude, local signal-to-noise of the
-    line), from a Hann-windowed FFT."""
-    s = sig - np.mean(sig)
-    n = s.size
-    w = np.hanning(n)
-    S = np.fft.rfft(s * w)
-    f = np.fft.rfftfreq(n, dt)
-    amp = 2 * np.abs(S) / w.sum()
-    ok = (f > fmin) & (f < 0.49 / dt)
-    for base in (50.0, 60.0):                      # mains hum is not physics
-        for h in range(1, 8):
-            ok &= np.abs(f - base * h) > 3.0 / (n * dt)
-    if f0 is not None and f0 > 0:
-        ok &= np.abs(f / f0 - np.round(f / f0)) * f0 > 2.0 / (n * dt)
-    if not np.any(ok):
-        return 0.0, 0.0, 0.0
-    k = int(np.flatnonzero(ok)[np.argmax(amp[ok])])
-    lo, hi = max(k - 30, 1), min(k + 31, amp.size)
-    side = np.r_[amp[lo:max(k - 3, lo)], amp[min(k + 4, hi):hi]]
-    snr = float(amp[k] / np.median(side)) if side.size and np.median(side) > 0 else 0.0
-    return float(f[k]), float(amp[k]), snr
-
-
-def y_on_motion(x, v, y):
-    """The part of y locked to the motion: least squares y ~ c0 + c1 x + c2 x'
-    (kept only when it explains more than a third of y's variance)."""
-    A = np.column_stack([np.ones(x.size), x, v])
-    coef = np.linalg.lstsq(A, y, rcond=None)[0]
-    r2 = 1.0 - float(np.var(y - A @ coef)) / max(float(np.var(y)), 1e-300)
-    if r2 < 1.0 / 3.0:
-        return (float(np.mean(y)), 0.0, 0.0)
-    return tuple(float(a) for a in coef)
-
-
-def directions(pr: Prepared) -> np.ndarray:
-    """The drive's direction (+1, -1) of every sample of the turned record."""
-    return np.concatenate([np.full(s.n, s.sign) for s in pr.strokes])
-
-
-def y_locked(x, v, y, sign):
-    """The part of y locked to the motion, sample by sample, and y's mean,
-    in each drive direction apart (:func:`y_on_motion` there: x is turned
-    forward stroke by stroke, and a load that follows the force as the rig
-    wrote it changes sign with the direction): (locked part, its direction's
-    mean)."""
-    fit, mean = np.empty(y.size), np.empty(y.size)
-    for d in (1, -1):
-        m = sign == d
-        if np.any(m):
-            c0, c1, c2 = y_on_motion(x[m], v[m], y[m])
-            fit[m] = c0 + c1 * x[m] + c2 * v[m]
-            mean[m] = np.mean(y[m])
-    return fit, mean
-
-
 def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
     f0 = 1.0 / float(np.median(c.periods(pr.t))) if np.any(c.next_ok) else None
     if y is not None:
@@ -367,40 +285,6 @@ def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
 def _stick_series(pr: Prepared, c: Cycles):
     """Per stick: the time of its middle and the stick velocity over the drive."""
     return stick_ratios(pr, c)
-
-
-def drive_scan(t, r, fmin, fmax, nperm=199, seed=0):
-    """A periodic modulation of the stick velocity: the largest fraction of
-    the series' variance a sinusoid explains over a frequency grid, its
-    frequency and relative amplitude, and the permutation p-value of that
-    maximum (the sticks' order shuffled: under a constant drive the stick
-    velocities are exchangeable)."""
-    n = r.size
-    if n < 8 or not np.std(r) > 0 or not fmax > fmin > 0:
-        return 0.0, 0.0, 0.0, 1.0
-    span = float(t[-1] - t[0])
-    nf = int(np.clip(4 * span * fmax, 50, 600))
-    freqs = np.geomspace(fmin, fmax, nf)
-    rng = np.random.default_rng(seed)
-    R = np.column_stack([r] + [rng.permutation(r) for _ in range(nperm)])
-    R = R - R.mean(axis=0)
-    tot = np.sum(R * R, axis=0)
-    best = np.zeros(R.shape[1])
-    arg = 0
-    for j, f in enumerate(freqs):
-        B = np.column_stack([np.ones(n), np.sin(2 * math.pi * f * t), np.cos(2 * math.pi * f * t)])
-        Q, _ = np.linalg.qr(B)
-        P = Q[:, 1:].T @ R
-        frac = np.sum(P * P, axis=0) / tot
-        if frac[0] > best[0]:
-            arg = j
-        best = np.maximum(best, frac)
-    f = float(freqs[arg])
-    B = np.column_stack([np.ones(n), np.sin(2 * math.pi * f * t), np.cos(2 * math.pi * f * t)])
-    co = np.linalg.lstsq(B, r, rcond=None)[0]
-    amp = float(math.hypot(co[1], co[2]) / abs(co[0])) if co[0] else 0.0
-    p = float((1 + np.count_nonzero(best[1:] >= best[0])) / (nperm + 1))
-    return float(best[0]), f, amp, p
 
 
 def _drive(pr: Prepared, c: Cycles, fn: float, nperm: int = 199):
@@ -424,33 +308,6 @@ def _creep(pr: Prepared, c: Cycles):
     mid, late = mid[:n], late[:n]
     est = lambda keep: float(1.0 - np.median(late[keep]) / np.median(mid[keep]))
     return est(np.ones(n, bool)), _jackknife(est, n)
-
-
-def level_fit(tt, pos, lvl, f=None):
-    """The friction level per cycle as a linear trend in time plus a sinusoid
-    in the drive's travel: (range of the fitted curve, coefficients
-    [mean, slope, sin, cos], frequency per mm of travel).  Without ``f`` the
-    frequency is scanned from one period over the record to one over four
-    cycles (the one explaining most)."""
-    tt0 = tt - tt.mean()
-    span = float(np.ptp(pos))
-    if span <= 0 or lvl.size < 8:
-        X = np.column_stack([np.ones(tt.size), tt0])
-        co = np.linalg.lstsq(X, lvl, rcond=None)[0]
-        return float(np.ptp(X @ co)), np.r_[co, 0.0, 0.0], 0.0
-    if f is None:
-        freqs = np.linspace(1.0 / span, lvl.size / (4.0 * span), min(200, max(10, lvl.size)))
-        best = None
-        for fr in freqs:
-            X = np.column_stack([np.ones(tt.size), tt0, np.sin(2 * math.pi * fr * pos), np.cos(2 * math.pi * fr * pos)])
-            co, res, _, _ = np.linalg.lstsq(X, lvl, rcond=None)
-            r = float(np.sum((lvl - X @ co) ** 2))
-            if best is None or r < best[0]:
-                best = (r, fr)
-        f = best[1]
-    X = np.column_stack([np.ones(tt.size), tt0, np.sin(2 * math.pi * f * pos), np.cos(2 * math.pi * f * pos)])
-    co = np.linalg.lstsq(X, lvl, rcond=None)[0]
-    return float(np.ptp(X @ co)), co, float(f)
 
 
 def _drift(pr: Prepared, c: Cycles, nperm: int = 199):
@@ -493,88 +350,6 @@ def _asymmetry(pr: Prepared, c: Cycles):
     est = lambda keep: float(np.median(pk[keep & fw]) - np.median(pk[keep & bw])) \
         if np.count_nonzero(keep & fw) and np.count_nonzero(keep & bw) else np.nan
     return est(np.ones(pk.size, bool)), _jackknife(est, pk.size)
-
-
-#: goodness-of-fit features of the baseline (not effects): the slip's duration
-#: in half natural periods, the spread of the peaks over D, the spread of the
-#: periods over their mean; a record that departs from the baseline's
-#: replicates in one of them by more than GOF_MARGIN, with no candidate named,
-#: is ``unexplained``
-GOF = ("slip_duration", "peak_spread", "period_spread")
-GOF_MARGIN = {"slip_duration": 0.25, "peak_spread": 0.10, "period_spread": 0.10, "arrest_ringing": 0.01}
-#: features of the rig read like GOF but not a miss of the friction model: what rings after each arrest
-#: (a second mode of the rig, :func:`arrest_ringing`), warned about where it departs from the replicates
-RIG = ("arrest_ringing",)
-
-
-def arrest_ringing(pr: Prepared, c: Cycles, fn: float, D: float) -> float:
-    """What rings after each arrest (a second mode of the rig: the 1-DoF
-    baseline's slider is still in stick): in each stick, the RMS of x about
-    a quadratic over the first two natural periods after the trough (at
-    most the stick's first half) less that over the stick's second half
-    (its last tenth left out), over D; the median over the sticks (0 when
-    fewer than three sticks are long enough)."""
-    n2 = int(round(2.0 / (fn * pr.dt)))
-    out = []
-    for k in np.flatnonzero(c.next_ok):
-        a, b = int(c.trough_i[k]), int(c.peak_i[k + 1])
-        m = b - a
-        if m < 24:
-            continue
-        w1 = min(n2, m // 2)
-        late = (a + m // 2, a + int(0.9 * m))
-        if w1 < 8 or late[1] - late[0] < 8:
-            continue
-        r = []
-        for i0, i1 in ((a, a + w1), late):
-            seg = pr.x[i0:i1]
-            tt = np.arange(seg.size, dtype=float)
-            r.append(float(np.std(seg - np.polyval(np.polyfit(tt, seg, 2), tt))))
-        out.append(r[0] - r[1])
-    return float(np.median(out)) / D if len(out) >= 3 else 0.0
-
-
-def goodness(pr: Prepared, c: Cycles, fn: float, D: float) -> dict:
-    """The goodness-of-fit features (see :data:`GOF`)."""
-    dur = slip_seconds(pr, c)
-    per = c.periods(pr.t)
-    return {"slip_duration": float(dur * 2.0 * fn) if dur else 0.0,
-            "peak_spread": float(np.std(pr.x[c.peak_i]) / D) if c.n > 1 else 0.0,
-            "period_spread": float(np.std(per) / np.mean(per)) if per.size > 1 else 0.0,
-            "arrest_ringing": arrest_ringing(pr, c, fn, D)}
-
-
-def position_anova(pos, val, group, nbins: int = 6):
-    """Values against position along the track, less each group's (stroke's)
-    mean: (range of the position-bin means, p of the one-way F test)."""
-    from scipy.stats import f as fdist
-
-    ok = np.isfinite(pos) & np.isfinite(val)
-    pos, val, group = pos[ok], val[ok], group[ok]
-    if np.unique(group).size < 2 or val.size < 3 * nbins:
-        return 0.0, 1.0
-    r = val.copy()
-    for gval in np.unique(group):
-        m = group == gval
-        r[m] -= np.mean(r[m])
-    edges = np.quantile(pos, np.linspace(0, 1, nbins + 1))
-    b = np.clip(np.searchsorted(edges, pos, side="right") - 1, 0, nbins - 1)
-    means, ss_b, ss_w, k = [], 0.0, 0.0, 0
-    for j in range(nbins):
-        m = b == j
-        if np.count_nonzero(m) < 2:
-            continue
-        mu = float(np.mean(r[m]))
-        means.append(mu)
-        ss_b += np.count_nonzero(m) * mu ** 2
-        ss_w += float(np.sum((r[m] - mu) ** 2))
-        k += 1
-    n = r.size
-    df_b, df_w = k - 1, n - k - (np.unique(group).size - 1)
-    if k < 3 or df_w < 2 or not ss_w > 0:
-        return 0.0, 1.0
-    F = (ss_b / df_b) / (ss_w / df_w)
-    return float(np.ptp(means)), float(fdist.sf(F, df_b, df_w))
 
 
 def _position(pr: Prepared, c: Cycles):
@@ -701,16 +476,3 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     return st, se, aux
 
 
-def _binned_anova(pos, val, group, nbins: int = 6):
-    """Position dependence from one mean per stroke and position bin."""
-    edges = np.quantile(pos, np.linspace(0, 1, nbins + 1))
-    b = np.clip(np.searchsorted(edges, pos, side="right") - 1, 0, nbins - 1)
-    P, V, G = [], [], []
-    for gval in np.unique(group):
-        for j in range(nbins):
-            m = (group == gval) & (b == j)
-            if np.count_nonzero(m):
-                P.append(0.5 * (edges[j] + edges[j + 1]))
-                V.append(float(np.mean(val[m])))
-                G.append(gval)
-    return position_anova(np.asarray(P), np.asarray(V), np.asarray(G), nbins)

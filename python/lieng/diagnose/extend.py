@@ -41,7 +41,8 @@ import numpy as np
 
 from lieng.errors import LiengInputError
 from lieng.diagnose.baseline import Params, identify, model_y, pr_like, run_slice, simulate, slip_friction
-from lieng.diagnose.evidence import _stick_series, drive_scan, level_fit, lowpass, stick_times
+from lieng.diagnose.evidence import _stick_series, stick_times
+from lieng.diagnose.signals import drive_scan, level_fit, lowpass
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
 
 __all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds"]
