@@ -23,18 +23,23 @@ def _reject_inapplicable(args) -> None:
         raise LiengInputError(f"--lookup {args.lookup}: applies to run lieng1 and run mlien only (TRC has no "
                               f"POINT step)")
 
-def _run_program(args, program: str, tables, plots: str, summary) -> int:
-    """``lieng run lieng1|mlien``: check the output directory, read and run the deck, write the listing, the
-    CSV ``tables(res)`` ((name, header, rows) each) and the plots together, print ``summary(deck, res)``."""
+def _run_program(args, program: str, tables, plots: str, summary, run=None, listing=None) -> int:
+    """``lieng run PROGRAM``: check the output directory, read and run the input (``run(args)`` gives (deck,
+    result); by default the program's deck and run_deck), write the listing (``listing(deck, result)``; by
+    default the program's), the CSV ``tables(res)`` ((name, header, rows) each) and the plots together, print
+    ``summary(deck, res)``."""
     import importlib
 
     from lieng.io.outputs import check_outdir, staged_outdir, write_csv, write_lines
-    from lieng.programs import listing, read_deck
+    from lieng.programs import listing as listings, read_deck
 
     check_outdir(args.outdir, args.force)
-    deck = read_deck(args.deck, program=program)
-    res = importlib.import_module(f"lieng.programs.{program}").run_deck(deck, lookup=args.lookup)
-    lines = getattr(listing, f"{program}_listing")(deck, res)
+    if run is None:
+        deck = read_deck(args.deck, program=program)
+        res = importlib.import_module(f"lieng.programs.{program}").run_deck(deck, lookup=args.lookup)
+    else:
+        deck, res = run(args)
+    lines = (listing or getattr(listings, f"{program}_listing"))(deck, res)
     tabs = list(tables(res))
     with staged_outdir(args.outdir, args.force) as tmp:
         write_lines(tmp / "listing.txt", lines)
@@ -74,13 +79,12 @@ def _run_mlien(args) -> int:
     return _run_program(args, "mlien", tables, "mlien_plots", summary)
 
 
-def _run_trc(args) -> int:
+def _trc_input(args):
+    """The TRC run of a deck, or of a CSV trace with the natural frequencies from the options: (deck or None,
+    result)."""
     from lieng.programs import read_deck
-    from lieng.programs.listing import trc_listing
-    from lieng.io.outputs import check_outdir, staged_outdir, write_csv, write_lines
-    from lieng.programs.trc import CSV_COLUMNS, read_csv, trc
+    from lieng.programs.trc import read_csv, trc
 
-    check_outdir(args.outdir, args.force)
     # one convention with diagnose: --fn / --fnv in Hz, the listing's --omnh / --omnv in rad/s
     for hz, rad in (("fn", "omnh"), ("fnv", "omnv")):
         if getattr(args, hz) is not None:
@@ -97,23 +101,26 @@ def _run_trc(args) -> int:
         if xn is not None and args.omnv is None:
             raise LiengInputError(f"{args.deck}: the normal channel (column xn or y) needs --fnv (natural "
                                   f"frequency of the normal mode, Hz) or --omnv (rad/s)")
-        res = trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin, _where=str(args.deck))
-    else:
-        if args.omnh is not None or args.omnv is not None:
-            raise LiengInputError("--fn/--fnv/--omnh/--omnv are for CSV input: a TRC deck gives them on card 2")
-        deck = read_deck(args.deck, program="trc")
-        res = deck.run(origin=args.origin)
-    listing = trc_listing(res)
-    cols = res.columns()
-    with staged_outdir(args.outdir, args.force) as tmp:
-        write_lines(tmp / "listing.txt", listing)
-        write_csv(tmp / "trc.csv", list(CSV_COLUMNS),
-                  ([int(cols["i"][k])] + [_cell(cols[c][k]) for c in CSV_COLUMNS[1:]] for k in range(res.nn)))
-        if not args.no_plots:
-            _plots("trc_plots", res, tmp)
-    if not args.quiet:
+        return None, trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin, _where=str(args.deck))
+    if args.omnh is not None or args.omnv is not None:
+        raise LiengInputError("--fn/--fnv/--omnh/--omnv are for CSV input: a TRC deck gives them on card 2")
+    deck = read_deck(args.deck, program="trc")
+    return deck, deck.run(origin=args.origin)
+
+
+def _run_trc(args) -> int:
+    from lieng.programs.listing import trc_listing
+    from lieng.programs.trc import CSV_COLUMNS
+
+    def tables(res):
+        cols = res.columns()
+        return [("trc.csv", list(CSV_COLUMNS),
+                 ([int(cols["i"][k])] + [_cell(cols[c][k]) for c in CSV_COLUMNS[1:]] for k in range(res.nn)))]
+
+    def summary(deck, res):
         eln = "" if not res.has_normal else f", ELN = {res.eln:.6g} mm"
-        print(f"trc: {res.nn} points over {res.t[-1] - res.t[0]:.6g} s; origin ({res.origin}) EL = {res.el:.6g} mm"
-              f"{eln}")
-        print(f"wrote {Path(args.outdir) / 'listing.txt'}, trc.csv" + ("" if args.no_plots else " and the plots"))
-    return 0
+        return (f"trc: {res.nn} points over {res.t[-1] - res.t[0]:.6g} s; origin ({res.origin}) "
+                f"EL = {res.el:.6g} mm{eln}")
+
+    return _run_program(args, "trc", tables, "trc_plots", summary, run=_trc_input,
+                        listing=lambda deck, res: trc_listing(res))
