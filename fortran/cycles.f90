@@ -15,7 +15,7 @@
 !>  * faithful: the listing's POINT step with the deck's DTHETA, crossings by
 !>    linear interpolation, time as steps*DTHETA (the angle turned about S).
 module cycles
-   use lienard_core, only: wp, point_step, st_ok
+   use lienard_core, only: wp, point_step, st_ok, band_line
    use status_codes, only: st_no_return
    implicit none
    private
@@ -39,21 +39,6 @@ contains
          end if
       end do
    end function band_of
-
-   pure subroutine band_line(n, xchl, ychl, j, a, b, ylo, yhi)
-      integer, intent(in) :: n, j
-      real(wp), intent(in) :: xchl(n), ychl(n)
-      real(wp), intent(out) :: a, b, ylo, yhi
-      if (j == 0) then
-         a = xchl(1); b = 0.0_wp; ylo = ychl(1); yhi = huge(1.0_wp)
-      else if (j == n) then
-         a = xchl(n); b = 0.0_wp; ylo = -huge(1.0_wp); yhi = ychl(n)
-      else
-         b = (xchl(j + 1) - xchl(j))/(ychl(j + 1) - ychl(j))
-         a = xchl(j) - b*ychl(j)
-         ylo = ychl(j + 1); yhi = ychl(j)
-      end if
-   end subroutine band_line
 
    !> Closed-form solution of u'' - b u' + u = 0 from (u0, y0) after time t.
    !> For a steep band (|b| > 2, real roots l1 > l2 with l1*l2 = 1) and w*t > 1

@@ -26,7 +26,7 @@ module lienard_core
              st_dt_undefined, st_bad_size, st_arcos_domain, st_omega_zero, st_timdis_range
 
    public :: wp
-   public :: char_slopes, centre_of_symmetry, xb_listing, xb_bisect, point_step, point_advance
+   public :: char_slopes, centre_of_symmetry, xb_listing, xb_bisect, point_step, point_advance, band_line
 
    !> Modes of the POINT step.
    !> 0 (listing): the listing's linear scan (DO 315 JJ=1,N) and its
@@ -381,6 +381,28 @@ contains
       end do
    end subroutine point_advance
 
+   !> The line of band J of the characteristic, X = A + B*Y for YLO <= Y < YHI:
+   !> band 0 above YCHL(1) and band N below YCHL(N) hold the end values
+   !> (POINT reads XCHL(1) above YCHL(1), XCHL(N) below YCHL(N)); band J,
+   !> 1 <= J < N, is the segment from point J to point J+1.
+   pure subroutine band_line(n, xchl, ychl, j, a, b, ylo, yhi)
+      integer, intent(in) :: n                 !< number of points of the characteristic
+      real(wp), intent(in) :: xchl(n)          !< abscissae of the characteristic
+      real(wp), intent(in) :: ychl(n)          !< ordinates, strictly decreasing
+      integer, intent(in) :: j                 !< the band, 0..N
+      real(wp), intent(out) :: a, b            !< the band's line X = A + B*Y
+      real(wp), intent(out) :: ylo, yhi        !< its velocity limits
+      if (j == 0) then
+         a = xchl(1); b = 0.0_wp; ylo = ychl(1); yhi = huge(1.0_wp)
+      else if (j == n) then
+         a = xchl(n); b = 0.0_wp; ylo = -huge(1.0_wp); yhi = ychl(n)
+      else
+         b = (xchl(j + 1) - xchl(j))/(ychl(j + 1) - ychl(j))
+         a = xchl(j) - b*ychl(j)
+         ylo = ychl(j + 1); yhi = ychl(j)
+      end if
+   end subroutine band_line
+
    !> NSTEPS steps of mode_fast in one loop, for speed: the band of the
    !> characteristic is followed from the previous step (a hunt, not a
    !> bisection), each band's line is precomputed as XB = A + B*Y (one
@@ -399,18 +421,12 @@ contains
       real(wp), intent(inout) :: t             !< T (uncorrected), advanced in place
       integer, intent(out) :: status           !< st_ok, st_singular_point or st_dt_undefined
       integer, intent(out) :: where            !< the failing step, else 0
-      real(wp) :: a(0:n), b(0:n), lo(0:n), hi(0:n), xb, xk, dx, dy, den, s, xl, yl, tl
+      real(wp) :: a(0:n), b(0:n), lo(0:n), hi(0:n), xb, xk, dx, dy, den, xl, yl, tl
       integer :: k, l
 
       ! band k: lo(k) <= Y < hi(k); k = 0 above YCHL(1), k = N below YCHL(N)
-      a(0) = xchl(1); b(0) = 0.0_wp; lo(0) = ychl(1); hi(0) = huge(1.0_wp)
-      a(n) = xchl(n); b(n) = 0.0_wp; lo(n) = -huge(1.0_wp); hi(n) = ychl(n)
-      do k = 1, n - 1
-         s = (xchl(k + 1) - xchl(k))/(ychl(k) - ychl(k + 1))
-         b(k) = -s
-         a(k) = xchl(k) + s*ychl(k)
-         lo(k) = ychl(k + 1)
-         hi(k) = ychl(k)
+      do k = 0, n
+         call band_line(n, xchl, ychl, k, a(k), b(k), lo(k), hi(k))
       end do
       status = st_ok
       where = 0
