@@ -25,14 +25,13 @@ from __future__ import annotations
 
 import multiprocessing
 import os
-import warnings
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from typing import Callable, Iterator, Sequence
 
 import numpy as np
 
-from lieng.errors import LiengInputError
+from lieng.errors import LiengInputError, describe, run_reporting
 
 __all__ = ["InProcess", "open_executor", "run_tasks", "check_workers", "default_workers", "MAX_WORKERS",
            "CONNECT_TIMEOUT"]
@@ -203,15 +202,9 @@ def _discard_client(exc, cls) -> None:
 
 
 def _call(fn, args):
-    """Run ``fn(*args)`` as the command line runs its work: numerical warnings
-    silent, the program's own warnings collected (a worker process's
-    standard error is not the user's).  Returns (result, warning messages)."""
-    with warnings.catch_warnings(record=True) as caught, np.errstate(all="ignore"):
-        warnings.simplefilter("always")
-        for cat in (RuntimeWarning, DeprecationWarning, PendingDeprecationWarning):
-            warnings.simplefilter("ignore", cat)
-        value = fn(*args)
-    return value, [" ".join(str(w.message).split()) for w in caught if issubclass(w.category, UserWarning)]
+    """Run ``fn(*args)`` as the command line runs its work (a worker process's standard error is not the
+    user's): returns (result, warning messages), :func:`lieng.errors.run_reporting`."""
+    return run_reporting(fn, *args)
 
 
 def _call_caught(fn, args):
@@ -224,7 +217,7 @@ def _call_caught(fn, args):
     except MemoryError:
         return None, [], "not enough memory for this input"
     except Exception as exc:                # reported per task; the batch goes on
-        return None, [], f"{type(exc).__name__}: {' '.join(str(exc).split())[:200]}"
+        return None, [], describe(exc)
     return value, msgs, None
 
 
@@ -266,7 +259,7 @@ def run_tasks(executor: Executor | None, fn: Callable, args: Sequence[tuple], *,
             try:
                 value, msgs, err = f.result()
             except Exception as exc:        # the worker itself failed
-                value, msgs, err = None, [], f"{type(exc).__name__}: {' '.join(str(exc).split())[:200]}"
+                value, msgs, err = None, [], describe(exc)
             item = (k, value, msgs, err)
         else:
             value, msgs = f.result()

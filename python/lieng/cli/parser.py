@@ -7,7 +7,7 @@ import os
 import re
 import sys
 
-from lieng.errors import LiengInputError
+from lieng.errors import LiengInputError, describe, run_reporting
 from lieng.io.outputs import PLOT_DEFAULT, PLOT_FORMATS, plot_output
 
 from lieng.cli.common import CHAR_PROGRAMS, FORCE_HELP, PROGRAMS, UNEXPECTED
@@ -200,10 +200,6 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     """Run the command line; returns the exit status (0, or 2 for bad input)."""
-    import warnings
-
-    import numpy as np
-
     parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
@@ -214,19 +210,10 @@ def main(argv=None) -> int:
     # checked for finiteness where it is written, and bad input gets one line.
     # The program's own warnings are printed, one line each, after a run that
     # succeeds (an error is the only line of a failed run).
-    with warnings.catch_warnings(record=True) as caught, np.errstate(all="ignore"):
-        warnings.simplefilter("always")
-        warnings.simplefilter("ignore", RuntimeWarning)
-        warnings.simplefilter("ignore", DeprecationWarning)
-        warnings.simplefilter("ignore", PendingDeprecationWarning)
-        code = _dispatch(parser, args)
+    code, messages = run_reporting(_dispatch, parser, args)
     if code == 0:
-        seen = set()
-        for w in caught:
-            msg = " ".join(str(w.message).split())
-            if issubclass(w.category, UserWarning) and msg not in seen:
-                seen.add(msg)
-                print(f"lieng: warning: {msg}", file=sys.stderr)
+        for msg in dict.fromkeys(messages):
+            print(f"lieng: warning: {msg}", file=sys.stderr)
     return code
 
 
@@ -273,8 +260,7 @@ def _dispatch(parser, args) -> int:
         # suite fails on this message, so each one is fixed at its cause
         if os.environ.get("LIENG_DEBUG"):
             raise
-        msg = " ".join(str(exc).split())[:200]
-        print(f"lieng: error: {args.command}: {UNEXPECTED} ({type(exc).__name__}: {msg}); please report it "
+        print(f"lieng: error: {args.command}: {UNEXPECTED} ({describe(exc)}); please report it "
               f"(LIENG_DEBUG=1 shows the traceback)", file=sys.stderr)
         return 2
 
