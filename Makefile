@@ -11,7 +11,7 @@ STAMP  := $(VENV)/.lieng-installed
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SOURCES := pyproject.toml meson.build $(wildcard cards/*.dat cards/figures/*.dat) $(wildcard fortran/*.f90) fortran/f2py_f2cmap $(wildcard python/lieng/*.py python/lieng/*/*.py python/lieng/*/*.md)
 
-.PHONY: all demo test test-all bench bench-diagnose gfortran venv install clean distclean
+.PHONY: all demo test test-all bench bench-diagnose gfortran venv install dev clean distclean
 
 all: install
 
@@ -33,6 +33,13 @@ $(STAMP): $(VENV)/.deps $(SOURCES) | gfortran
 	touch $@
 
 install: $(STAMP)
+
+# a developer's editable install: an edit under python/ takes effect at the next import, a Fortran edit is
+# rebuilt then (no reinstall); run the tests with $(VPY) -m pytest (make test/install reinstall a regular copy)
+dev: $(VENV)/.deps | gfortran
+	$(VPIP) install -q --no-build-isolation --no-deps -e .
+	rm -f $(STAMP)
+	@echo "editable install in $(VENV): $(VPY) -m pytest -q -m 'not slow' tests"
 
 demo: install
 	rm -rf out

@@ -32,3 +32,32 @@ def test_unknown_figure_or_missing_cards_exit_2(tmp_path, capsys):
     assert "9.99" in err and err.count("\n") == 1 and not (tmp_path / "a").exists()
     assert main(["figures", "-o", str(tmp_path / "b"), "--cards", str(tmp_path)]) == 2
     assert "not found" in capsys.readouterr().err and not (tmp_path / "b").exists()
+
+
+def test_a_lienard_plane_is_fitted_to_its_trajectories_with_equal_scales():
+    """The phase plane's axes hold the trajectories with a small margin and
+    equal scales (a cycle is drawn round), whatever the characteristic's
+    extent: a spiral of radius 0.2 about x = 6.2 is not drawn on -9..9."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from lieng.programs.graf import lienard_view
+
+    th = np.linspace(0, 12 * np.pi, 2000)
+    r = 0.2 * np.exp(-0.03 * th)
+    x, y = 6.2 + r * np.cos(th), r * np.sin(th)
+    fig, ax = plt.subplots()
+    ax.plot([-9, 9], [-60, 60], "k")          # a characteristic line far beyond the data
+    lienard_view(ax, x, y)
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    assert x0 < x.min() and x1 > x.max() and y0 < y.min() and y1 > y.max()
+    assert x1 - x0 < 1.3 * np.ptp(x) and y1 - y0 < 1.3 * np.ptp(y)
+    assert ax.get_aspect() == 1.0
+    # a flat record (a decay to a point on the axis) keeps a readable height
+    ax2 = fig.add_subplot(2, 1, 2)
+    lienard_view(ax2, np.linspace(0, 10, 50), np.zeros(50))
+    assert np.ptp(ax2.get_ylim()) >= 0.2 * np.ptp(ax2.get_xlim())
+    plt.close(fig)

@@ -133,7 +133,7 @@ def _figures(args) -> int:
 
     check_outdir(args.outdir, args.force)
     with staged_outdir(args.outdir, args.force) as tmp:
-        paths = figures(tmp, cards=args.cards, only=args.only)
+        paths = figures(tmp, cards=args.cards, only=[n for a in args.only for n in a.split(",") if n] if args.only else None)
     if not args.quiet:
         print(f"wrote {len(paths)} figure{'' if len(paths) == 1 else 's'} to {args.outdir}/: "
               + ", ".join(p.name for p in paths))

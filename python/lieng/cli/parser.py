@@ -192,7 +192,8 @@ def build_parser() -> argparse.ArgumentParser:
     fg.add_argument("--force", action="store_true", help=FORCE_HELP)
     fg.add_argument("--cards", default=None, help="a directory laid out as the project's cards/ (default: the "
                     "decks installed with lieng)")
-    fg.add_argument("--only", nargs="+", metavar="FIG", help="only these figures (e.g. 2.27 A9-7)")
+    fg.add_argument("--only", nargs="+", action="extend", metavar="FIG",
+                    help="only these figures (e.g. 2.27 A9-7, or 2.27,A9-7)")
     fg.add_argument("-q", "--quiet", action="store_true")
     _plot_options(fg)
     return p
