@@ -489,3 +489,21 @@ def test_a_second_mode_ringing_after_each_arrest_is_read():
         x[i:] += 0.05 * D * np.exp(-tt * rec.fn * 2.0) * np.sin(2 * np.pi * 6 * rec.fn * tt)
     pr.x = x
     assert arrest_ringing(pr, c, rec.fn, D) == pytest.approx(0.0125, rel=0.2)
+
+
+def test_a_line_beside_the_mains_frequency_is_the_records_own():
+    """Mains hum is a line at 50 or 60 Hz (within the grid's 0.4 %); the
+    shoulder of a stick-slip harmonic at 49.1 Hz (4 x 12.28 Hz) is not hum,
+    and a 50 Hz line added to the same record is found at 50 Hz."""
+    import numpy as np
+
+    from lieng.diagnose.read import _hum_lines
+
+    dt = 1.0 / 4800.0
+    t = np.arange(0.0, 2.8, dt)
+    f0 = 12.28
+    saw = 2 * ((t * f0) % 1.0) - 1.0           # a stick-slip's sawtooth: every harmonic of f0
+    assert _hum_lines(saw, dt) == []
+    hum = 0.04 * np.sin(2 * np.pi * 50.0 * t + 0.3)        # 2 % of the drop
+    lines = _hum_lines(saw + hum, dt)
+    assert len(lines) == 1 and abs(lines[0][0] - 50.0) < 0.05 and abs(lines[0][1] - 0.04) < 0.012

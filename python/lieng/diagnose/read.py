@@ -357,7 +357,10 @@ def _despiked(x, name: str, notes: list, when: str = ""):
 
 def _hum_lines(x, dt):
     """Mains lines (50/60 Hz and harmonics below Nyquist) that stand far
-    above the spectrum beside them: [(frequency, amplitude, a, b)]."""
+    above the spectrum beside them: [(frequency, amplitude, a, b)].  The line
+    must peak within a bin (and the grid's 0.4 % tolerance) of the mains
+    frequency: the shoulder of a line beside it (a harmonic of the
+    stick-slip, a natural frequency near 50 or 60 Hz) is the record's own."""
     n = x.size
     T = n * dt
     if T * 50 < 20:
@@ -378,18 +381,25 @@ def _hum_lines(x, dt):
             side = np.r_[S[lo:max(k - 3, lo)], S[min(k + 4, hi):hi]]
             if side.size < 10:
                 continue
-            peak = float(np.max(S[max(k - 2, 0):k + 3]))
+            # a line of its own at the mains frequency: a local maximum within a bin and the grid's tolerance
+            m = 1 + int(min(0.004 * fh * T, 4.0))
+            own = [j for j in range(max(k - m, 1), min(k + m, S.size - 2) + 1) if S[j] >= S[j - 1] and S[j] >= S[j + 1]]
+            if not own:
+                continue
+            kk = max(own, key=lambda j: S[j])
+            peak = float(S[kk])
             if peak > 30.0 * float(np.median(side)):
                 # refine the frequency and fit the line by least squares
                 best = None
-                for ff in fh + np.linspace(-1.0, 1.0, 41) / T:
+                for ff in (kk + np.linspace(-1.0, 1.0, 41)) / T:
                     c = np.cos(2 * math.pi * ff * tt)
                     sn = np.sin(2 * math.pi * ff * tt)
                     a = 2 * float(np.dot(s, c)) / n
                     b = 2 * float(np.dot(s, sn)) / n
                     if best is None or a * a + b * b > best[1] ** 2:
                         best = (ff, math.hypot(a, b), a, b)
-                found.append(best)
+                if abs(best[0] - fh) <= 0.004 * fh + 0.5 / T:     # the line is at the mains frequency
+                    found.append(best)
     return found
 
 
