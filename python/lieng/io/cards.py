@@ -447,8 +447,22 @@ class Card:
         return [e for e in _flatten(parse_format(self.fmt)) if e.kind in "IFED"]
 
 
-def card_location(layout: Sequence[Card], name: str) -> str:
-    """'card C, columns A-B (NAME, Fw.d)' for a field name of a layout."""
+def card_location(layout: Sequence[Card], name: str, last: str | None = None) -> str:
+    """'card C, columns A-B (NAME, Fw.d)' for a field name of a layout; with ``last``, a later field of the
+    same card, 'card C, columns A-B (NAME, ..., LAST)' for the fields from one to the other."""
+    first = _field_position(layout, name)
+    if first is None:
+        return name
+    cno, c1, c2, ed = first
+    if last is None:
+        return f"card {cno}, columns {c1}-{c2} ({name}, {_desc(ed)})"
+    names = layout[cno - 1].names
+    span = names[names.index(name): names.index(last) + 1]
+    return f"card {cno}, columns {c1}-{_field_position(layout, last)[2]} ({', '.join(span)})"
+
+
+def _field_position(layout: Sequence[Card], name: str):
+    """(card number, first column, last column, edit descriptor) of a field name of a layout, or None."""
     for cno, card in enumerate(layout, start=1):
         col = 0
         k = 0
@@ -459,10 +473,10 @@ def card_location(layout: Sequence[Card], name: str) -> str:
             if ed.kind == "/":
                 continue
             if k < len(card.names) and card.names[k] == name:
-                return f"card {cno}, columns {col + 1}-{col + ed.w} ({name}, {_desc(ed)})"
+                return cno, col + 1, col + ed.w, ed
             k += 1
             col += ed.w
-    return name
+    return None
 
 
 def _desc(ed: Edit) -> str:
