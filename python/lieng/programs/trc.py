@@ -47,7 +47,7 @@ import numpy as np
 
 from lieng import _core
 from lieng.io.cards import Card, card_location, read_cards, write_cards
-from lieng.errors import LiengInputError
+from lieng.errors import LiengInputError, LiengInputWarning, located
 from lieng import status as st
 from lieng.io.table import read_columns
 
@@ -85,19 +85,25 @@ def data_cards(nn: int) -> list[Card]:
     return cards
 
 
+#: the field of :func:`trc`'s errors and warnings: the trace as a whole (a deck or a CSV file names its source)
+TRACE = "trc"
+
+
 def _err_status(status: int, where: int, what: str) -> LiengInputError:
+    """The core's status as an error about ``what`` (its field)."""
     if status == st.TRC_FEW_POINTS:
-        return LiengInputError(f"{what}: fewer than {NMIN} points (BELFIT fits groups of 5 points)")
-    if status == st.TRC_NO_EL:
-        return LiengInputError(f"{what}: no velocity sign change: VLN never goes from + to - and stays - for "
-                               f"four samples, so the origin EL is undefined (the listing leaves it so)")
-    if status == st.TRC_DEGENERATE_FIT:
-        return LiengInputError(f"{what}: points {where}-{where + 4} have fewer than 3 distinct displacements: "
-                               f"BELFIT's quadratic least-squares fit over them is singular")
-    if status == st.TRC_ZERO_DT:
-        return LiengInputError(f"{what}: points {where - 1} and {where} have the same time: the velocity "
-                               f"V({where}) divides by zero")
-    return LiengInputError(f"{what}: the TRC core stopped ({st.name(status)}) at point {where}")
+        detail = f"fewer than {NMIN} points (BELFIT fits groups of 5 points)"
+    elif status == st.TRC_NO_EL:
+        detail = ("no velocity sign change: VLN never goes from + to - and stays - for four samples, so the origin "
+                  "EL is undefined (the listing leaves it so)")
+    elif status == st.TRC_DEGENERATE_FIT:
+        detail = (f"points {where}-{where + 4} have fewer than 3 distinct displacements: BELFIT's quadratic "
+                  f"least-squares fit over them is singular")
+    elif status == st.TRC_ZERO_DT:
+        detail = f"points {where - 1} and {where} have the same time: the velocity V({where}) divides by zero"
+    else:
+        detail = f"the TRC core stopped ({st.name(status)}) at point {where}"
+    return LiengInputError(detail, fields=(what,))
 
 
 @dataclass
@@ -127,6 +133,10 @@ class Deck:
 
     def locate(self, name: str) -> str:
         return f"{self.source}: {card_location(self.layout, name)}"
+
+    def where(self, field: str) -> str:
+        """The deck's name for a field of :func:`trc`'s errors (the trace as a whole): its source."""
+        return self.source
 
     @classmethod
     def from_lines(cls, lines: Sequence[str], source: str = "deck") -> "Deck":
@@ -197,7 +207,8 @@ class Deck:
     def run(self, origin: str = "listing") -> "TrcResult":
         """Run the deck as the 1971 program did (``origin``: see :func:`trc`)."""
         t, x, xn = self.calibrated()
-        res = trc(t, x, xn, omnh=self.omnh, omnv=self.omnv, origin=origin, _where=self.source)
+        with located(self.where):
+            res = trc(t, x, xn, omnh=self.omnh, omnv=self.omnv, origin=origin)
         res.readings = (self.nt.copy(), self.nh.copy(), self.nhn.copy())
         return res
 
@@ -313,26 +324,29 @@ class TrcResult:
         return cols
 
 
-def _check_trace(t, x, xn, where):
+def _trace_error(detail: str) -> LiengInputError:
+    return LiengInputError(detail, fields=(TRACE,))
+
+
+def _check_trace(t, x, xn):
     for name, a in (("t", t), ("x", x), ("xn", xn)):
         if a is None:
             continue
         if a.ndim != 1:
-            raise LiengInputError(f"{where}: {name} must be one-dimensional")
+            raise _trace_error(f"{name} must be one-dimensional")
         bad = np.flatnonzero(~np.isfinite(a))
         if bad.size:
-            raise LiengInputError(f"{where}: column {name}, point {bad[0] + 1}: {a[bad[0]]} is not a finite number")
+            raise _trace_error(f"column {name}, point {bad[0] + 1}: {a[bad[0]]} is not a finite number")
     if x.size != t.size or (xn is not None and xn.size != t.size):
-        raise LiengInputError(f"{where}: t, x and xn must have the same length")
+        raise _trace_error("t, x and xn must have the same length")
     if t.size < NMIN:
-        raise LiengInputError(f"{where}: {t.size} points: TRC needs at least {NMIN} (BELFIT fits groups of 5)")
+        raise _trace_error(f"{t.size} points: TRC needs at least {NMIN} (BELFIT fits groups of 5)")
     dt = np.diff(t)
     bad = np.flatnonzero(dt <= 0)
     if bad.size:
         k = bad[0] + 2
         what = "the same time as" if dt[bad[0]] == 0 else "an earlier time than"
-        raise LiengInputError(f"{where}: column t, point {k}: t = {t[k - 1]:g} is {what} point {k - 1}: times "
-                              f"must increase")
+        raise _trace_error(f"column t, point {k}: t = {t[k - 1]:g} is {what} point {k - 1}: times must increase")
 
 
 def origin_fit(xx_raw, yy, vel, i, lo=0.1, hi=0.4, half=12):
@@ -376,7 +390,7 @@ def origin_fit(xx_raw, yy, vel, i, lo=0.1, hi=0.4, half=12):
     return float(coef[0])
 
 
-def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str = "trc") -> TrcResult:
+def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing") -> TrcResult:
     """The TRC reduction of a calibrated trace.
 
     Parameters
@@ -407,42 +421,47 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
     LiengInputError
         Too few points, times not increasing, a non-finite value, a zero
         frequency, no + to - velocity sign change (EL undefined), or a
-        smoothing group with fewer than 3 distinct displacements.
+        smoothing group with fewer than 3 distinct displacements.  Its
+        ``fields`` are ``("trc",)``: the trace as a whole.
+
+    Warns
+    -----
+    LiengInputWarning
+        Points where a value is undefined (left NaN), an undefined ELN.
     """
     t = np.ascontiguousarray(t, dtype=float)
     x = np.ascontiguousarray(x, dtype=float)
     has_normal = xn is not None
     xn_arr = np.ascontiguousarray(xn, dtype=float) if has_normal else None
-    _check_trace(t, x, xn_arr, _where)
+    _check_trace(t, x, xn_arr)
     if not (math.isfinite(omnh) and omnh != 0):
-        raise LiengInputError(f"{_where}: OMNH = {omnh}: the natural frequency must be a finite non-zero number")
+        raise _trace_error(f"OMNH = {omnh}: the natural frequency must be a finite non-zero number")
     if has_normal:
         if omnv is None or not (math.isfinite(omnv) and omnv != 0):
-            raise LiengInputError(f"{_where}: OMNV = {omnv}: the normal mode needs a finite non-zero natural "
-                                  f"frequency")
+            raise _trace_error(f"OMNV = {omnv}: the normal mode needs a finite non-zero natural frequency")
     else:
         xn_arr = np.ones_like(x)
         omnv = 1.0
     if origin not in ("listing", "fit"):
-        raise LiengInputError(f"{_where}: origin must be 'listing' or 'fit', not {origin!r}")
+        raise _trace_error(f"origin must be 'listing' or 'fit', not {origin!r}")
     with np.errstate(all="ignore"):
         (xs, v, vn, vln, vnln, am, xx, yy, xxn, yyn, xlnr, xnlnr, amt, amtn, el, eln, has_eln, iel, ieln,
          status, where, xx0, xxn0) = _core.core_trc_reduce(t, x, xn_arr, float(omnh), float(omnv))
     if status != st.OK:
-        raise _err_status(int(status), int(where), _where)
+        raise _err_status(int(status), int(where), TRACE)
     el_listing, eln_listing = float(el), float(eln) if has_eln else math.nan
     eln_undefined = False
     if origin == "listing" and not math.isfinite(el_listing):
-        raise LiengInputError(f"{_where}: EL is undefined: the reverse construction at points {int(iel)}-"
-                              f"{int(iel) + 1}, where the velocity changes sign, divides by zero (neighbouring "
-                              f"points with the same displacement, as in a quantised trace); --origin fit "
-                              f"estimates EL from the points around them")
+        raise _trace_error(f"EL is undefined: the reverse construction at points {int(iel)}-{int(iel) + 1}, where "
+                           f"the velocity changes sign, divides by zero (neighbouring points with the same "
+                           f"displacement, as in a quantised trace); --origin fit estimates EL from the points "
+                           f"around them")
     with np.errstate(all="ignore"):
         if origin == "fit":
             el_new = origin_fit(xx0, yy, vln, int(iel) - 1)
             if not math.isfinite(el_new):
-                raise LiengInputError(f"{_where}: origin 'fit': fewer than two constructed points on each side "
-                                      f"of the velocity sign change with 0.1-0.4 of the largest |VLN|")
+                raise _trace_error("origin 'fit': fewer than two constructed points on each side of the velocity "
+                                   "sign change with 0.1-0.4 of the largest |VLN|")
             el = el_new
             xx = xx0 - el
             xlnr = xs - el
@@ -455,9 +474,10 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
                     xnlnr = xn_arr - eln
                     amtn = _as_mu(xxn, omnv)
         if has_normal and has_eln and not math.isfinite(float(eln)):
-            warnings.warn(f"{_where}: ELN is undefined: the reverse construction at points {int(ieln)}-"
-                          f"{int(ieln) + 1}, where the normal velocity changes sign, divides by zero; the "
-                          f"normal-mode characteristic is not shifted", stacklevel=2)
+            warnings.warn(LiengInputWarning(f"ELN is undefined: the reverse construction at points {int(ieln)}-"
+                                            f"{int(ieln) + 1}, where the normal velocity changes sign, divides by "
+                                            f"zero; the normal-mode characteristic is not shifted", fields=(TRACE,)),
+                          stacklevel=2)
             has_eln, eln, eln_undefined = 0, math.nan, True
             xxn, xnlnr = xxn0.copy(), xn_arr.copy()
             amtn = _as_mu(xxn, omnv)
@@ -469,13 +489,14 @@ def trc(t, x, xn=None, *, omnh, omnv=None, origin: str = "listing", _where: str 
         xn_out = xn_arr
         if not has_eln:
             if not eln_undefined:           # (an undefined ELN was said above)
-                warnings.warn(f"{_where}: the normal velocity has no - to + sign change: ELN is undefined, the "
-                              f"normal-mode characteristic is not shifted", stacklevel=2)
+                warnings.warn(LiengInputWarning("the normal velocity has no - to + sign change: ELN is undefined, "
+                                                "the normal-mode characteristic is not shifted", fields=(TRACE,)),
+                              stacklevel=2)
             eln = math.nan
     cols = {"x": xlnr, "v": v, "xx": xx, "yy": yy, "amt": amt}
     if has_normal:
         cols.update({"xn": xnlnr, "vn": vn, "am": am, "xxn": xxn, "yyn": yyn, "amtn": amtn})
-    _flag_missing(cols, _where)
+    _flag_missing(cols)
     return TrcResult(t=t, x=xs, xn=xn_out, v=v, vn=vn, vln=vln, vnln=vnln, am=am, xx=xx, yy=yy, amt=amt,
                      xxn=xxn, yyn=yyn, amtn=amtn, xlnr=xlnr, xnlnr=xnlnr, el=float(el), eln=float(eln),
                      omnh=float(omnh), omnv=float(omnv) if has_normal else math.nan, has_normal=has_normal,
@@ -496,7 +517,7 @@ _MISSING_WHY = {
 }
 
 
-def _flag_missing(cols: dict, where: str) -> None:
+def _flag_missing(cols: dict) -> None:
     """Set every non-finite value of the per-point columns to NaN (written as
     an empty cell in trc.csv, ``UNDEF`` in the listing) and say so, once per
     column, with the first points and the cause."""
@@ -512,8 +533,8 @@ def _flag_missing(cols: dict, where: str) -> None:
             why = f"{base.upper()} is undefined there"
         else:
             why = _MISSING_WHY.get(name, "the arithmetic overflows")
-        warnings.warn(f"{where}: {name.upper()} is undefined at {pts.size} point(s) ({shown}): {why}; left empty "
-                      f"in trc.csv", stacklevel=3)
+        warnings.warn(LiengInputWarning(f"{name.upper()} is undefined at {pts.size} point(s) ({shown}): {why}; left "
+                                        f"empty in trc.csv", fields=(TRACE,)), stacklevel=3)
 
 
 def belfit(x, y):
