@@ -23,6 +23,8 @@ import warnings
 from contextlib import contextmanager
 from typing import Callable
 
+__all__ = ["LiengInputError", "LiengInputWarning", "CentreUndefined", "located", "run_reporting", "describe"]
+
 
 class _Fields:
     """A one-line message about ``fields`` of the input: ``'<field>: <detail>'``, or ``'<first>..<last>:
