@@ -25,6 +25,7 @@ MODULES = [
     ("lieng.analysis.figures", "The thesis's theoretical figures (`lieng figures`)"),
     ("lieng.io.table", "Tables as labs write them (CSV/TAB/whitespace, units in the header)"),
     ("lieng.analysis.executor", "Where independent tasks run: in process, a process pool, a Dask cluster"),
+    ("lieng.errors", "Bad input: the one error type, its fields, and how a deck or a file names them (`located`)"),
     ("lieng.status", "The status codes of the compiled core (one table with fortran/status.f90)"),
 ]
 

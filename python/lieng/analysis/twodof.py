@@ -28,7 +28,7 @@ from lieng.errors import LiengInputError
 from lieng import status as st
 
 __all__ = ["RigParams", "matrices", "modal_frequencies", "identify_k2", "simulate", "Simulation", "metrics",
-           "onedof", "compare", "PAPER", "rpm_to_belt", "write_outputs"]
+           "onedof", "compare", "Comparison", "PAPER", "rpm_to_belt", "write_outputs"]
 
 #: The paper's Tables 3 and 4 (experiment, theory) at 0.1 rpm: peak angle of
 #: Part 1 (deg), amplitude of its fluctuation (deg), dominant frequency (Hz).
@@ -244,14 +244,30 @@ def metrics(sim: Simulation, steady_from: float = 0.5) -> dict:
             "dominant_hz": f, "normal_force": {"mean": float(nf.mean()), "std": float(nf.std())}}
 
 
+class Comparison(dict):
+    """:func:`compare`'s result: the JSON summary (this dict) and the three simulations it was measured on,
+    which the plots of :func:`write_outputs` draw.
+
+    Attributes
+    ----------
+    simulations : dict
+        ``{"2-DoF": ..., "1-DoF": ..., "1-DoF C_N": ...}``: :func:`simulate`'s and :func:`onedof`'s results.
+    """
+
+    def __init__(self, summary: dict, simulations: dict):
+        super().__init__(summary)
+        self.simulations = simulations
+
+
 def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, params: RigParams | None = None,
-            keep: dict | None = None, belt: float | None = None) -> dict:
+            belt: float | None = None) -> Comparison:
     """``lieng twodof``'s JSON: modal frequencies, the 2-DoF metrics, the
     1-DoF (constant load) and load-corrected 1-DoF metrics, the re-identified
     k2 and the paper's Table 3/4 values.  muk is the paper's for 80 N (0.17)
     and 100 N (0.19), interpolated linearly in the preload between them.
     The belt moves at 0.1 rpm at r2 = 0.08 m (8.38e-4 m/s, sec. 4.3) unless
-    ``belt`` (m/s) is given."""
+    ``belt`` (m/s) is given.  The result (a dict) also carries the
+    simulations (:class:`Comparison`)."""
     p = params or RigParams()
     if params is None:
         muk = float(np.interp(preload, [80.0, 100.0], [PAPER[80.0]["muk"], PAPER[100.0]["muk"]]))
@@ -267,14 +283,12 @@ def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, param
            "preload_n": float(preload), "rpm": float(rpm), "belt_m_s": v0, "params": p.to_json()}
     if float(preload) in PAPER:
         out["paper"] = {k: PAPER[float(preload)][k] for k in ("experiment", "theory")}
-    if keep is not None:
-        keep.update({"2-DoF": s2, "1-DoF": s1, "1-DoF C_N": sc})
-    return out
+    return Comparison(out, {"2-DoF": s2, "1-DoF": s1, "1-DoF C_N": sc})
 
 
-def write_outputs(res: dict, sims: dict, outdir) -> None:
+def write_outputs(res: Comparison, outdir) -> None:
     """Plots (angle, forces, spectrum: 2-DoF beside 1-DoF, the paper's values
-    marked) and ``twodof.json`` into ``outdir``."""
+    marked) and ``twodof.json`` into ``outdir``, from :func:`compare`'s result."""
     from lieng.io.outputs import dumps_json
     from pathlib import Path
 
@@ -289,7 +303,7 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
     (out / "twodof.json").write_text(dumps_json(res, indent=2) + "\n", encoding="utf-8")
     cap = (f"lieng twodof: dual-pin-on-disc rig (seed 001), Fn = {res['preload_n']:g} N, {res['rpm']:g} rpm; "
            f"2-DoF reconstruction vs the thesis's 1-DoF model (constant load)")
-    two, one = sims["2-DoF"], sims["1-DoF"]
+    two, one = res.simulations["2-DoF"], res.simulations["1-DoF"]
     fig, ax = plt.subplots(2, 1, figsize=(10, 7), dpi=110)
     for lab, s, kw in (("2-DoF", two, {"color": "C0"}), ("1-DoF (constant N)", one, {"color": "C1"})):
         ax[0].plot(s.t, s.theta_deg, lw=0.5, label=lab, **kw)

@@ -164,13 +164,12 @@ def _twodof(args) -> int:
                               f"after the first {T_END_MIN / 2:g} s)")
     if args.preload > PRELOAD_MAX:
         raise LiengInputError(f"--preload {args.preload:g}: at most {PRELOAD_MAX:g} N (the paper's rig: 80 N)")
-    keep: dict = {}
     if args.belt is not None and not (0 < args.belt < 1):
         raise LiengInputError(f"--belt {args.belt}: the belt velocity must be between 0 and 1 m/s")
     if args.belt is None and not 2 * math.pi * 0.08 * args.rpm / 60 < 1:
         raise LiengInputError(f"--rpm {args.rpm:g}: the belt at r2 = 0.08 m must be slower than 1 m/s "
                               f"(rpm < {60 / (2 * math.pi * 0.08):.4g})")
-    res = compare(preload=args.preload, rpm=args.rpm, t_end=args.t_end, keep=keep, belt=args.belt)
+    res = compare(preload=args.preload, rpm=args.rpm, t_end=args.t_end, belt=args.belt)
     if not all_finite(res):
         raise LiengInputError(f"--preload {args.preload:g}, --rpm {args.rpm:g}: the simulation leaves the range of "
                               f"the model (a non-finite result); use values nearer the paper's (80 N, 0.1 rpm)")
@@ -178,7 +177,7 @@ def _twodof(args) -> int:
         from lieng.io.outputs import staged_outdir
 
         with staged_outdir(args.outdir, args.force) as tmp:
-            write_outputs(res, keep, tmp)
+            write_outputs(res, tmp)
     if args.json:
         print(dumps_json(res, indent=2))
     else:

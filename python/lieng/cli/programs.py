@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from lieng.errors import LiengInputError
+from lieng.errors import LiengInputError, located
 
 from lieng.cli.common import _cell, _is_table, _plots
 
@@ -101,7 +101,8 @@ def _trc_input(args):
         if xn is not None and args.omnv is None:
             raise LiengInputError(f"{args.deck}: the normal channel (column xn or y) needs --fnv (natural "
                                   f"frequency of the normal mode, Hz) or --omnv (rad/s)")
-        return None, trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin, _where=str(args.deck))
+        with located(lambda field: str(args.deck)):     # the trace's errors and warnings name the file
+            return None, trc(t, x, xn, omnh=args.omnh, omnv=args.omnv, origin=args.origin)
     if args.omnh is not None or args.omnv is not None:
         raise LiengInputError("--fn/--fnv/--omnh/--omnv are for CSV input: a TRC deck gives them on card 2")
     deck = read_deck(args.deck, program="trc")

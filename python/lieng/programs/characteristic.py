@@ -2,34 +2,31 @@
 
 Shared by LIENG-1 and MLIEN.  The checks run before any compiled routine is
 called, so no input can make the Fortran read out of range; each error
-names where the bad value is through a ``locate`` callback (card and
-columns for a deck, the argument and index for the Python API).
+names the bad point as the API takes it (``fields``: ``"xchl[6]"``), and a
+deck names it again by card and columns (:meth:`DeckBase.where`).
 """
 
 from __future__ import annotations
 
+import re
 import warnings
 from dataclasses import dataclass, fields
-from typing import Callable
 
 import numpy as np
 
 from lieng import _core
 from lieng.io.cards import Card, card_location, read_cards, write_cards
-from lieng.errors import CentreUndefined, LiengInputError
+from lieng.errors import CentreUndefined, LiengInputError, LiengInputWarning, located
 from lieng import status as st
 
-__all__ = ["Centre", "check_characteristic", "centre_of_symmetry", "api_locator", "NMAX_DECK",
-           "CHAR_CARDS", "DeckBase"]
+__all__ = ["Centre", "check_characteristic", "centre_of_symmetry", "NMAX_DECK", "CHAR_CARDS", "DeckBase"]
 
 #: DIMENSION XCHL(200), YCHL(200) of the listings.
 NMAX_DECK = 200
 
-Locate = Callable[[str, int], str]
 
-
-def api_locator(kind: str, j: int) -> str:
-    """Name point ``j`` (1-based) of array ``kind`` the way the API takes it."""
+def _point(kind: str, j: int) -> str:
+    """The field of point ``j`` (1-based) of array ``kind`` ("XCHL") as the API takes it: ``xchl[j-1]``."""
     return f"{kind.lower()}[{j - 1}]"
 
 
@@ -66,7 +63,7 @@ class Centre:
 MAX_ABS = 1e12
 
 
-def check_characteristic(xchl, ychl, locate: Locate = api_locator) -> tuple[np.ndarray, np.ndarray]:
+def check_characteristic(xchl, ychl) -> tuple[np.ndarray, np.ndarray]:
     """Check a characteristic line before it reaches the compiled core.
 
     Raises :class:`LiengInputError` for fewer than 3 points, arrays of
@@ -84,39 +81,34 @@ def check_characteristic(xchl, ychl, locate: Locate = api_locator) -> tuple[np.n
     for kind, arr in (("XCHL", x), ("YCHL", y)):
         bad = np.flatnonzero(~np.isfinite(arr))
         if bad.size:
-            raise LiengInputError(f"{locate(kind, int(bad[0]) + 1)}: {arr[bad[0]]} is not a finite number")
+            raise LiengInputError(f"{arr[bad[0]]} is not a finite number", fields=(_point(kind, int(bad[0]) + 1),))
         big = np.flatnonzero(np.abs(arr) > MAX_ABS)
         if big.size:
-            raise LiengInputError(f"{locate(kind, int(big[0]) + 1)}: {kind}({int(big[0]) + 1}) = {arr[big[0]]:g} is "
-                                  f"out of range: a characteristic's values (mm) are at most {MAX_ABS:g} in "
-                                  f"magnitude, so that its slopes and trajectories stay finite")
+            raise LiengInputError(f"{kind}({int(big[0]) + 1}) = {arr[big[0]]:g} is out of range: a "
+                                  f"characteristic's values (mm) are at most {MAX_ABS:g} in magnitude, so that "
+                                  f"its slopes and trajectories stay finite", fields=(_point(kind, int(big[0]) + 1),))
     eq = np.flatnonzero(np.diff(x) == 0.0)
     if eq.size:
         j = int(eq[0]) + 1
         raise LiengInputError(
-            f"{locate('XCHL', j + 1)}: XCHL({j + 1}) = XCHL({j}) = {x[j - 1]:g}: infinite slope between "
-            f"points {j} and {j + 1}; Lienard's construction does not apply (the listing: "
-            f"'control statement does not exist')"
-        )
+            f"XCHL({j + 1}) = XCHL({j}) = {x[j - 1]:g}: infinite slope between points {j} and {j + 1}; "
+            f"Lienard's construction does not apply (the listing: 'control statement does not exist')",
+            fields=(_point("XCHL", j + 1),))
     up = np.flatnonzero(np.diff(y) >= 0.0)
     if up.size:
         j = int(up[0]) + 1
-        raise LiengInputError(
-            f"{locate('YCHL', j + 1)}: YCHL({j + 1}) = {y[j]:g} is not below YCHL({j}) = {y[j - 1]:g}: "
-            f"YCHL must decrease strictly from point 1 to point N"
-        )
+        raise LiengInputError(f"YCHL({j + 1}) = {y[j]:g} is not below YCHL({j}) = {y[j - 1]:g}: YCHL must "
+                              f"decrease strictly from point 1 to point N", fields=(_point("YCHL", j + 1),))
     return x, y
 
 
-def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator, *, undefined: str = "raise") -> Centre:
+def centre_of_symmetry(xchl, ychl, *, undefined: str = "raise") -> Centre:
     """Slopes and centre of symmetry of a characteristic, as PINPUT finds them.
 
     Parameters
     ----------
     xchl, ychl : array_like
         The characteristic line, YCHL strictly decreasing.
-    locate : callable, optional
-        Names a point in error messages.
     undefined : {"raise", "warn"}, optional
         What to do when the equal-slope interpolation divides by zero: raise
         :class:`CentreUndefined`, or warn and return the centre as NaN (with
@@ -134,23 +126,19 @@ def centre_of_symmetry(xchl, ychl, locate: Locate = api_locator, *, undefined: s
         NEGATIVE SLOPE POINT" and goes on with undefined values), or an
         equal-slope interpolation that divides by zero.
     """
-    x, y = check_characteristic(xchl, ychl, locate)
+    x, y = check_characteristic(xchl, ychl)
     slope, isel, lll, mmm, branch, xmdl, ymdl, status, where = _core.core_centre(x, y)
     n = x.size
     if status == st.NO_NEGATIVE_SLOPE:
-        raise CentreUndefined(
-            f"{locate('YCHL', 1)}..{locate('YCHL', n)}: there is not a negative slope point among "
-            f"segments 1..{n - 2} (FORMAT 1175): the centre of symmetry cannot be found"
-        )
+        raise CentreUndefined(f"there is not a negative slope point among segments 1..{n - 2} (FORMAT 1175): "
+                              f"the centre of symmetry cannot be found", fields=(_point("YCHL", 1), _point("YCHL", n)))
     if status == st.CENTRE_UNDEFINED:
-        msg = (
-            f"{locate('XCHL', where)}..{locate('XCHL', where + 2)}: segments {where} and {where + 1} of the "
-            f"negative-slope run have equal slopes, so the equal-slope interpolation of PINPUT "
-            f"(statement 210/220) divides by zero: the centre of symmetry is undefined"
-        )
+        msg = (f"segments {where} and {where + 1} of the negative-slope run have equal slopes, so the equal-slope "
+               f"interpolation of PINPUT (statement 210/220) divides by zero: the centre of symmetry is undefined")
+        run = (_point("XCHL", where), _point("XCHL", where + 2))
         if undefined != "warn":
-            raise CentreUndefined(msg)
-        warnings.warn(f"{msg}; XMDL and YMDL are NaN", stacklevel=2)
+            raise CentreUndefined(msg, fields=run)
+        warnings.warn(LiengInputWarning(f"{msg}; XMDL and YMDL are NaN", fields=run), stacklevel=2)
         return Centre(np.asarray(slope[: n - 1]).copy(), int(isel), int(lll), int(mmm), int(branch),
                       float("nan"), float("nan"))
     if status != st.OK:  # pragma: no cover - ruled out by check_characteristic
@@ -171,6 +159,15 @@ def char_from_values(v: dict) -> tuple[np.ndarray, np.ndarray]:
     xchl = np.array([v[f"XCHL({j})"] for j in range(1, NMAX_DECK + 1)], dtype=float)
     ychl = np.array([v[f"YCHL({j})"] for j in range(1, NMAX_DECK + 1)], dtype=float)
     return xchl, ychl
+
+
+_POINT = re.compile(r"^(\w+)\[(\d+)\]$")
+
+
+def card_field(field: str) -> str:
+    """The card's name of a field the API names: ``"xchl[6]"`` -> ``"XCHL(7)"``, ``"dtheta"`` -> ``"DTHETA"``."""
+    m = _POINT.match(field)
+    return f"{m[1].upper()}({int(m[2]) + 1})" if m else field.upper()
 
 
 class DeckBase:
@@ -225,9 +222,13 @@ class DeckBase:
         """'<source>: card C, columns A-B (NAME, Fw.d)'."""
         return f"{self.source}: {card_location(self.layout, name)}"
 
-    def locator(self) -> Locate:
-        """A ``locate`` callback naming characteristic points by card and columns."""
-        return lambda kind, j: self.locate(f"{kind}({j})")
+    def where(self, field: str) -> str:
+        """Where a field the API names (the ``fields`` of its errors) stands on the cards: ``"xchl[6]"`` ->
+        '<source>: card 4, columns 11-20 (XCHL(7), F10.2)'; a group of one card's fields (``"xinp, yinp"``)
+        by the columns from its first field to its last.  The deck layer runs the API under
+        ``located(deck.where)``."""
+        names = [card_field(f) for f in field.split(", ")]
+        return f"{self.source}: {card_location(self.layout, names[0], names[-1] if len(names) > 1 else None)}"
 
     def check_characteristic_fields(self) -> None:
         """KEY a digit, N in 3..200, DTHETA > 0, and the characteristic's own checks."""
@@ -243,4 +244,5 @@ class DeckBase:
             )
         if not (self.dtheta > 0 and np.isfinite(self.dtheta)):
             raise LiengInputError(f"{self.locate('DTHETA')}: DTHETA = {self.dtheta:g} must be positive")
-        check_characteristic(self.xchl[: self.n], self.ychl[: self.n], self.locator())
+        with located(self.where):
+            check_characteristic(self.xchl[: self.n], self.ychl[: self.n])

@@ -27,9 +27,8 @@ import numpy as np
 
 from lieng import _core
 from lieng.io.cards import Card
-from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
-                             check_characteristic)
-from lieng.errors import CentreUndefined, LiengInputError
+from .characteristic import CHAR_CARDS, NMAX_DECK, Centre, DeckBase, centre_of_symmetry, check_characteristic
+from lieng.errors import CentreUndefined, LiengInputError, LiengInputWarning, located
 from lieng import status as st
 
 __all__ = ["LAYOUT", "Deck", "Lieng1Result", "lieng1", "run_deck", "LOOKUP_MODES", "lookup_code"]
@@ -117,24 +116,24 @@ class Lieng1Result:
         return self.x.shape[1]
 
 
-def _status_error(status: int, where: int, itraj: int, x0: float, y0: float, locate_start: str) -> LiengInputError:
+#: the field of the initial point (the errors of a trajectory name it: it is what the user chose)
+START = "xinp, yinp"
+
+
+def _status_error(status: int, where: int, itraj: int, x0: float, y0: float) -> LiengInputError:
     if status == st.SINGULAR_POINT:
         return LiengInputError(
-            f"{locate_start}: trajectory {itraj} reaches the singular point at step {where} "
-            f"(P = S: X = XB, Y = 0; it starts at X = {x0:g}, Y = {y0:g}): Lienard's construction has no "
-            f"direction there"
-        )
+            f"trajectory {itraj} reaches the singular point at step {where} (P = S: X = XB, Y = 0; it starts at "
+            f"X = {x0:g}, Y = {y0:g}): Lienard's construction has no direction there", fields=(START,))
     if status == st.DT_UNDEFINED:
-        return LiengInputError(
-            f"{locate_start}: trajectory {itraj}, step {where}: 2*Y - DY = 0 in DT = |2*DX/(2*Y-DY)|, "
-            f"the time increment is undefined"
-        )
-    return LiengInputError(f"{locate_start}: the core stopped ({st.name(status)}) (trajectory {itraj}, step {where})")
+        return LiengInputError(f"trajectory {itraj}, step {where}: 2*Y - DY = 0 in DT = |2*DX/(2*Y-DY)|, the time "
+                               f"increment is undefined", fields=(START,))
+    return LiengInputError(f"the core stopped ({st.name(status)}) (trajectory {itraj}, step {where})",
+                           fields=(START,))
 
 
 def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3000, *,
-           lookup: str = "listing", _locate=api_locator, _locate_start: str = "xinp, yinp",
-           _strict_centre: bool = False) -> Lieng1Result:
+           lookup: str = "listing") -> Lieng1Result:
     """Phase portrait of the LIENG-1 program (thesis App. 4).
 
     Parameters
@@ -178,16 +177,18 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
         slope, e.g. x = c*v with c > 0): ``xmdl`` and ``ymdl`` are NaN, the
         trajectories are computed all the same.  A deck with such a
         characteristic is an error (:func:`run_deck`).
+
+    Errors and warnings about an argument name it in their ``fields``
+    (:class:`lieng.errors.LiengInputError`).
     """
-    x, y = check_characteristic(xchl, ychl, _locate)
+    x, y = check_characteristic(xchl, ychl)
     try:
         # LIENG-1's construction does not use the centre: an undefined
         # equal-slope interpolation only makes XMDL, YMDL NaN
-        centre = centre_of_symmetry(x, y, _locate, undefined="warn")
+        centre = centre_of_symmetry(x, y, undefined="warn")
     except CentreUndefined as exc:
-        if _strict_centre:
-            raise
-        warnings.warn(f"{exc}; xmdl and ymdl are undefined (NaN; UNDEF in the listing; LIENG-1's construction does not use them)", stacklevel=2)
+        warnings.warn(LiengInputWarning(f"{exc.detail}; xmdl and ymdl are undefined (NaN; UNDEF in the listing; "
+                                        f"LIENG-1's construction does not use them)", fields=exc.fields), stacklevel=2)
         slope = np.diff(y) / np.diff(x)
         centre = Centre(slope, 0, 0, 0, 0, float("nan"), float("nan"))
     try:
@@ -215,7 +216,7 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
         xs -= float(xincr)
         ys -= float(yincr)
     if status != st.OK:
-        raise _status_error(int(status), int(where), int(itraj), *starts[int(itraj) - 1], _locate_start)
+        raise _status_error(int(status), int(where), int(itraj), *starts[int(itraj) - 1])
     return Lieng1Result(np.ascontiguousarray(X.T), np.ascontiguousarray(Y.T), np.ascontiguousarray(T.T),
                         centre.xmdl, centre.ymdl, centre, x, y, starts, float(dtheta))
 
@@ -224,14 +225,14 @@ def lieng1(xchl, ychl, xinp, yinp, dtheta, xincr=0.0, yincr=0.0, ntraj=9, npts=3
 GROWTH_WARN = 1e6
 
 
-def check_growth(x, y, t, xchl, ychl, where: str, dtheta: float, start=()) -> None:
+def check_growth(x, y, t, xchl, ychl, dtheta: float, start=()) -> None:
     """Refuse trajectories that overflow and warn on ones that grow without
     bound; both mean an arc step DTHETA too large for the POINT step.
 
     Raises
     ------
     LiengInputError
-        A non-finite x, y or t (naming ``where``, DTHETA's card and columns).
+        A non-finite x, y or t (its field: ``dtheta``).
 
     Warns
     -----
@@ -243,15 +244,16 @@ def check_growth(x, y, t, xchl, ychl, where: str, dtheta: float, start=()) -> No
     if bad.any():
         k, i = (int(v) for v in np.argwhere(bad)[0])
         traj = f"trajectory {k + 1}, " if x.shape[0] > 1 else ""
-        raise LiengInputError(f"{where}: DTHETA = {dtheta:g}: at {traj}point {i + 1} the arithmetic overflows "
-                              f"(x, y or t is no longer a finite number): the arc step DTHETA (radians) is far "
-                              f"too large for the POINT step")
+        raise LiengInputError(f"DTHETA = {dtheta:g}: at {traj}point {i + 1} the arithmetic overflows (x, y or t is "
+                              f"no longer a finite number): the arc step DTHETA (radians) is far too large for the "
+                              f"POINT step", fields=("dtheta",))
     size = max(float(np.ptp(xchl)), float(np.ptp(ychl)), *(abs(float(v)) for v in start), 1e-300)
     big = max(float(np.max(np.abs(x))), float(np.max(np.abs(y))))
     if big > GROWTH_WARN * size:
-        warnings.warn(f"{where}: DTHETA = {dtheta:g}: the trajectories grow to |x|, |y| = {big:.3g}, "
-                      f"{big / size:.2g} times the size of the characteristic: the POINT step is accurate only "
-                      f"for small DTHETA (listing fields too narrow for a value print asterisks)", stacklevel=3)
+        warnings.warn(LiengInputWarning(f"DTHETA = {dtheta:g}: the trajectories grow to |x|, |y| = {big:.3g}, "
+                                        f"{big / size:.2g} times the size of the characteristic: the POINT step is "
+                                        f"accurate only for small DTHETA (listing fields too narrow for a value "
+                                        f"print asterisks)", fields=("dtheta",)), stacklevel=3)
 
 
 def lookup_code(lookup: str) -> int:
@@ -269,14 +271,21 @@ def phi_of(ymdl: float, ampv0: float) -> float:
 
 
 def run_deck(deck: Deck, lookup: str = "listing", ntraj: int = 9, npts: int = 3000) -> Lieng1Result:
-    """Run a LIENG-1 deck: 9 trajectories of 3000 points, as the listing does."""
+    """Run a LIENG-1 deck: 9 trajectories of 3000 points, as the listing does.
+
+    Errors and warnings name the deck's cards and columns (:meth:`Deck.where`).  A characteristic with no
+    negative slope, hence no centre of symmetry, is an error here (the 1971 program printed FORMAT 1175 and
+    went on with undefined values), where :func:`lieng1` warns and computes the trajectories all the same.
+    """
     deck.check()
     n = deck.n
-    res = lieng1(deck.xchl[:n], deck.ychl[:n], deck.xinp, deck.yinp, deck.dtheta, deck.xincr, deck.yincr,
-                 ntraj=ntraj, npts=npts, lookup=lookup, _locate=deck.locator(),
-                 _locate_start=f"{deck.source}: card 3, columns 26-45 (XINP, YINP)", _strict_centre=True)
-    check_growth(res.x, res.y, res.t, res.xchl, res.ychl, deck.locate("DTHETA"), deck.dtheta,
-                 (deck.xinp, deck.yinp))
+    with located(deck.where):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")             # lieng1 says it below: an equal-slope centre is NaN
+            centre_of_symmetry(deck.xchl[:n], deck.ychl[:n], undefined="warn")
+        res = lieng1(deck.xchl[:n], deck.ychl[:n], deck.xinp, deck.yinp, deck.dtheta, deck.xincr, deck.yincr,
+                     ntraj=ntraj, npts=npts, lookup=lookup)
+        check_growth(res.x, res.y, res.t, res.xchl, res.ychl, deck.dtheta, (deck.xinp, deck.yinp))
     if math.isnan(phi_of(res.ymdl, deck.ampv0)):
         warnings.warn(
             f"{deck.source}: PHI = ARCOS(VO/AMPV0) is undefined for VO = {res.ymdl:g}, AMPV0 = {deck.ampv0:g} "

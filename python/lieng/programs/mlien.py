@@ -31,9 +31,8 @@ import numpy as np
 
 from lieng import _core
 from lieng.io.cards import Card
-from .characteristic import (CHAR_CARDS, NMAX_DECK, Centre, DeckBase, api_locator, centre_of_symmetry,
-                             check_characteristic)
-from lieng.errors import LiengInputError
+from .characteristic import CHAR_CARDS, NMAX_DECK, Centre, DeckBase, centre_of_symmetry, check_characteristic
+from lieng.errors import LiengInputError, located
 from lieng import status as st
 from lieng.programs.lieng1 import check_growth, lookup_code
 
@@ -88,6 +87,12 @@ class Deck(DeckBase):
         if self.omega == 0:
             raise LiengInputError(f"{self.locate('OMEGA')}: OMEGA = 0: T(1) = PHI/OMEGA is undefined "
                                   f"(a constant drive is LIENG-1's case)")
+
+    def where(self, field: str) -> str:
+        """As :meth:`DeckBase.where`; ``trigger`` is card 83."""
+        if field == "trigger":
+            return f"{self.source}: card 83 (OMINTR, OMETRI, ATRI, BTRI)"
+        return super().where(field)
 
     @property
     def trigger_used(self) -> tuple:
@@ -155,7 +160,7 @@ def trial_run_points(npts: int) -> list[int]:
 
 
 def mlien(xchl, ychl, xinp, yinp, dtheta, omega, ampv0, trigger=None, npts=3000, *,
-          lookup: str = "listing", _locate=api_locator, _names=None) -> MlienResult:
+          lookup: str = "listing") -> MlienResult:
     """The MLIEN program (thesis App. 6): Lienard's construction with the
     driving velocity AMPV0*COS(OMEGA*t) and the triggering oscillation.
 
@@ -193,30 +198,29 @@ def mlien(xchl, ychl, xinp, yinp, dtheta, omega, ampv0, trigger=None, npts=3000,
         Bad characteristic, OMEGA = 0, |VO| > AMPV0 (ARCOS out of its domain),
         a driving velocity that leaves the velocity range of the moved
         characteristic (the listing then uses an undefined value), a point
-        on the singular point.
+        on the singular point.  Each names the argument in its ``fields``
+        (:class:`lieng.errors.LiengInputError`).
     """
-    names = _names or {k: k.lower() for k in ("OMEGA", "AMPV0", "XINP", "DTHETA", "TRIGGER")}
-    x, y = check_characteristic(xchl, ychl, _locate)
-    centre = centre_of_symmetry(x, y, _locate)
+    x, y = check_characteristic(xchl, ychl)
+    centre = centre_of_symmetry(x, y)
     trig = TRIGGER_LISTING if trigger is None else tuple(float(v) for v in trigger)
     if len(trig) != 4 or not all(math.isfinite(v) for v in trig):
-        raise LiengInputError(f"{names['TRIGGER']}: (omintr, ometri, atri, btri) must be four finite numbers")
-    for k, v in (("OMEGA", omega), ("AMPV0", ampv0), ("XINP", xinp), ("XINP", yinp), ("DTHETA", dtheta)):
+        raise LiengInputError("(omintr, ometri, atri, btri) must be four finite numbers", fields=("trigger",))
+    for k, v in (("omega", omega), ("ampv0", ampv0), ("xinp", xinp), ("yinp", yinp), ("dtheta", dtheta)):
         if not math.isfinite(float(v)):
-            raise LiengInputError(f"{names[k]}: {v} is not a finite number")
+            raise LiengInputError(f"{v} is not a finite number", fields=(k,))
     if not float(dtheta) > 0:
-        raise LiengInputError(f"{names['DTHETA']}: DTHETA = {dtheta} must be positive")
+        raise LiengInputError(f"DTHETA = {dtheta} must be positive", fields=("dtheta",))
     if float(omega) == 0:
-        raise LiengInputError(f"{names['OMEGA']}: OMEGA = 0: T(1) = PHI/OMEGA is undefined")
+        raise LiengInputError("OMEGA = 0: T(1) = PHI/OMEGA is undefined", fields=("omega",))
     npts = int(npts)
     if not 1 <= npts <= 10_000_000:
         raise LiengInputError(f"npts = {npts} must be between 1 and 1e7")
     vo = centre.ymdl
     if float(ampv0) == 0 or abs(vo / float(ampv0)) > 1:
-        raise LiengInputError(
-            f"{names['AMPV0']}: PHI = ARCOS(VO/AMPV0) is undefined: the centre of symmetry gives "
-            f"VO = YMDL = {vo:.6g} but AMPV0 = {float(ampv0):g}; |AMPV0| must be at least |VO|"
-        )
+        raise LiengInputError(f"PHI = ARCOS(VO/AMPV0) is undefined: the centre of symmetry gives VO = YMDL = "
+                              f"{vo:.6g} but AMPV0 = {float(ampv0):g}; |AMPV0| must be at least |VO|",
+                              fields=("ampv0",))
     X, Y, T, R, XM, YM, XL, YL, status, where = _core.core_mlien(
         x, y, float(dtheta), float(omega), float(ampv0), float(xinp), float(yinp), npts,
         np.array(trig, dtype=float), lookup_code(lookup))
@@ -227,40 +231,37 @@ def mlien(xchl, ychl, xinp, yinp, dtheta, omega, ampv0, trigger=None, npts=3000,
             phase = np.float64(omega) * np.float64(tw)
             drive = float(ampv0) * float(np.cos(phase))
         if not math.isfinite(tw):
-            raise LiengInputError(
-                f"{names['DTHETA']}: DTHETA = {float(dtheta):g}: at point {where} the time T is no longer a finite "
-                f"number: the arc step DTHETA (radians) is far too large for the POINT step")
+            raise LiengInputError(f"DTHETA = {float(dtheta):g}: at point {where} the time T is no longer a finite "
+                                  f"number: the arc step DTHETA (radians) is far too large for the POINT step",
+                                  fields=("dtheta",))
         if not math.isfinite(float(phase)):
-            raise LiengInputError(
-                f"{names['OMEGA']}: OMEGA = {float(omega):g}: at point {where} the phase OMEGA*T overflows")
+            raise LiengInputError(f"OMEGA = {float(omega):g}: at point {where} the phase OMEGA*T overflows",
+                                  fields=("omega",))
         raise LiengInputError(
-            f"{names['OMEGA']}..{names['AMPV0']}: at point {where} (T = {tw:.6g}) the driving "
-            f"velocity AMPV0*COS(OMEGA*T) = {drive:.6g} needs the "
-            f"characteristic at a velocity outside its range (TIMDIS would use an undefined ADIFF); "
-            f"extend YCHL or reduce AMPV0"
-        )
+            f"at point {where} (T = {tw:.6g}) the driving velocity AMPV0*COS(OMEGA*T) = {drive:.6g} needs the "
+            f"characteristic at a velocity outside its range (TIMDIS would use an undefined ADIFF); extend YCHL or "
+            f"reduce AMPV0", fields=("omega", "ampv0"))
     if status == st.SINGULAR_POINT:
-        raise LiengInputError(f"{names['XINP']}: point {where} is the singular point (P = S): Lienard's "
-                              f"construction has no direction there")
+        raise LiengInputError(f"point {where} is the singular point (P = S): Lienard's construction has no "
+                              f"direction there", fields=("xinp, yinp",))
     if status == st.DT_UNDEFINED:
-        raise LiengInputError(f"{names['XINP']}: point {where}: 2*Y - DY = 0, the time increment is undefined")
+        raise LiengInputError(f"point {where}: 2*Y - DY = 0, the time increment is undefined",
+                              fields=("xinp, yinp",))
     if status == st.CENTRE_UNDEFINED:
         raise LiengInputError(f"at point {where} the moved characteristic's centre of symmetry is undefined "
                               f"(equal-slope interpolation divides by zero)")
     if status != st.OK:
         raise LiengInputError(f"the MLIEN core stopped ({st.name(status)}) at point {where}")
-    check_growth(X, Y, T, x, y, names["DTHETA"], float(dtheta), (float(xinp), float(yinp)))
+    check_growth(X, Y, T, x, y, float(dtheta), (float(xinp), float(yinp)))
     return MlienResult(X, Y, T, R, XM, YM, x, y, XL, YL, centre, vo, math.acos(vo / float(ampv0)),
                        float(omega), float(ampv0), float(dtheta), trig)
 
 
 def run_deck(deck: Deck, lookup: str = "listing", npts: int = 3000) -> MlienResult:
-    """Run an MLIEN deck: one trajectory of 3000 points, as the listing does."""
+    """Run an MLIEN deck: one trajectory of 3000 points, as the listing does; errors and warnings name the
+    deck's cards and columns (:meth:`Deck.where`)."""
     deck.check()
     n = deck.n
-    loc = deck.locate
-    names = {"OMEGA": loc("OMEGA"), "AMPV0": loc("AMPV0"), "XINP": f"{deck.source}: card 2, columns 26-45 "
-             f"(XINP, YINP)", "DTHETA": loc("DTHETA"),
-             "TRIGGER": f"{deck.source}: card 83 (OMINTR, OMETRI, ATRI, BTRI)"}
-    return mlien(deck.xchl[:n], deck.ychl[:n], deck.xinp, deck.yinp, deck.dtheta, deck.omega, deck.ampv0,
-                 trigger=deck.trigger, npts=npts, lookup=lookup, _locate=deck.locator(), _names=names)
+    with located(deck.where):
+        return mlien(deck.xchl[:n], deck.ychl[:n], deck.xinp, deck.yinp, deck.dtheta, deck.omega, deck.ampv0,
+                     trigger=deck.trigger, npts=npts, lookup=lookup)
