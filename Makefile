@@ -9,7 +9,7 @@ LIENG  := $(VENV)/bin/lieng
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMP  := $(VENV)/.lieng-installed
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
-SOURCES := pyproject.toml meson.build $(wildcard cards/*.dat cards/figures/*.dat) $(wildcard fortran/*.f90) fortran/f2py_f2cmap $(wildcard python/lieng/*.py python/lieng/*/*.py python/lieng/*/*.md)
+SOURCES := pyproject.toml meson.build $(wildcard cards/*.dat cards/figures/*.dat) $(wildcard fortran/*.f90 fortran/*/*.f90) fortran/f2py_f2cmap $(wildcard python/lieng/*.py python/lieng/*/*.py python/lieng/*/*.md)
 
 .PHONY: all demo test test-all bench bench-diagnose gfortran venv install dev clean distclean
 

@@ -19,7 +19,7 @@ def test_the_python_table_is_the_fortran_table():
 
 
 def test_no_other_module_declares_status_codes():
-    for f in (ROOT / "fortran").glob("*.f90"):
+    for f in (ROOT / "fortran").rglob("*.f90"):
         if f.name == "status.f90":
             continue
         text = f.read_text()

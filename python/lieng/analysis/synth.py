@@ -2,7 +2,7 @@
 
 This generator is deliberately a separate implementation from the diagnosis
 path (:mod:`lieng.diagnose` simulates with the compiled core in
-``fortran/slider.f90``): it integrates its own equations with a classical
+``fortran/modern/slider.f90``): it integrates its own equations with a classical
 Runge-Kutta scheme in Python, uses its own friction laws (a Stribeck curve,
 Dieterich's logarithmic ageing) and shares no function with the diagnosis.
 

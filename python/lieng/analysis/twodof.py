@@ -1,6 +1,6 @@
 """The 2-DoF dual-pin-on-disc model of the second seed (``001_...txt``),
 reconstructed (its equations (1)-(12) were images and are lost), solved by
-the compiled switch-model integrator (``fortran/twodof.f90``), and set
+the compiled switch-model integrator (``fortran/modern/twodof.f90``), and set
 beside the thesis's 1-DoF model of the same rig.
 
 The reconstruction, each term traced to the seed's sentences, is in

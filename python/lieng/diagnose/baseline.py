@@ -23,7 +23,7 @@ the start of every stroke.  It is identified from the record:
   characteristic such a record resolves.
 
 The simulator (:func:`simulate`) runs the compiled slider core
-(``fortran/slider.f90``) stroke by stroke with the extensions' parameters
+(``fortran/modern/slider.f90``) stroke by stroke with the extensions' parameters
 (:class:`Params`), each zero in the baseline.
 """
 

@@ -43,7 +43,7 @@ from lieng import status as st
 __all__ = ["TrcResult", "trc", "calibrate", "belfit", "lsqfit", "origin_fit", "CSV_COLUMNS", "NMIN", "G_MM",
            "TRACE"]
 
-#: g in mm/s**2, the 9810. of loop 540 (AMT = XX*OMNH**2/9810.; g_mm in fortran/trc.f90).
+#: g in mm/s**2, the 9810. of loop 540 (AMT = XX*OMNH**2/9810.; g_mm in fortran/restored/trc.f90).
 G_MM = 9810.0
 #: BELFIT needs 2M-1 = 9 points; the issue and the origin search want 10.
 NMIN = 10
