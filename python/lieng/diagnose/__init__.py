@@ -19,8 +19,8 @@ import numpy as np
 
 from lieng.errors import LiengInputError
 from lieng.io.outputs import finite_json as _finite
-from lieng.diagnose.baseline import Params, calibrate_fn, fit_baseline
-from lieng.diagnose.decide import ALPHA, FN_RATIO, calibrate, decide, fn_needed, misfit, null_replicates
+from lieng.diagnose.baseline import Params, calibrate_fn, fit_baseline, pr_like, slip_friction
+from lieng.diagnose.decide import ALPHA, decide, fn_needed, misfit, null_replicates, rivals
 from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics
 from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import y_on_motion
@@ -198,59 +198,15 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
                      n_cycles=c_n)
 
 
-#: pairs of candidates that can stand for each other (a load that follows the
-#: motion bends the slips as a twin branch does)
-RIVALS = ("twin_branch", "load_variation")
-
-
-def _given(pr, k, other, other_ext, fn, u_fn, st, row, y_is_force, arcs, ylow, replicates, budget):
-    """Candidate ``k``'s statistic calibrated again by replicates of the
-    fitted extension ``other_ext`` of its rival (a load extension's load
-    follows the measured channel): (p, effect size), one-sided for effects
-    with a direction; None when too few replicates."""
-    null2, n2 = null_replicates(pr, other_ext, fn, u_fn, B=max(replicates // 2, 10), budget=0.5 * budget,
-                                seed=1, y_is_force=y_is_force, arcs=arcs,
-                                ylow=ylow if other_ext.load_k else None)
-    v, e = null2[k], null2[FN_RATIO]
-    fin = np.isfinite(v)
-    v, e = v[fin], e[fin]
-    if v.size < 5:
-        return None
-    m0, s0, d, _, _, p, _ = calibrate(float(st[k]), row["se"] or 0.0, v, k in ONE_SIDED, e, u_fn)
-    row["given_rival"] = {"rival": other, "null_mean": m0, "null_sd": s0, "effect_size": d, "p": p,
-                          "replicates": n2}
-    return p, (d if k in ONE_SIDED else abs(d))
-
-
-def _rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_force, arcs, ylow, replicates,
-            budget):
-    """When a twin branch and a load variation are both named, each is tested
-    again against replicates of the other's fitted extension (at the level
-    Holm's procedure gave it, by its margin), and one that the other's
-    extension accounts for is not named.  A normal *force* is independent
-    evidence of the load (its own variation), which no twin branch makes:
-    then only the twin is tested.  When neither survives the other, both
-    stay named (the record cannot tell them apart)."""
-    if not all(k in named and fitted[k][0] is not base for k in RIVALS):
-        return
-    tests = [("twin_branch", "load_variation")] + ([] if y_is_force else [("load_variation", "twin_branch")])
-    keep = {}
-    for k, other in tests:
-        r = _given(pr, k, other, fitted[other][0], fn, u_fn, st, rows[k], y_is_force, arcs, ylow, replicates, budget)
-        keep[k] = r is None or (r[0] <= rows[k]["holm_level"] and r[1] >= MARGIN[k])
-    if not any(keep.values()) and len(keep) == 2:
-        return
-    for k, ok in keep.items():
-        if ok:
-            continue
-        g = rows[k]["given_rival"]
-        other = g["rival"]
-        rows[k]["named"] = False
-        named.remove(k)
-        effects[:] = [e for e in effects if e["effect"] != k]
-        notes.append(f"{k} is not named: replicates of the fitted {other} extension give a {k} statistic like "
-                     f"the record's ({st[k]:.3g} against {g['null_mean']:.3g} +- {g['null_sd']:.2g} in "
-                     f"{g['replicates']} replicates, p = {g['p']:.2g})")
+def _plot_data(pr, c, fn, g0, tsplit) -> dict:
+    """What the report's plots draw, computed here (the report only draws):
+    the record's slips by the reverse construction (sliding velocity,
+    friction, branch) and the baseline trace's peaks and troughs."""
+    _, s, F, br, _ = slip_friction(pr, c, fn)
+    xb = g0["x_base"]
+    cb = find_cycles(pr_like(pr, xb), fn) if xb is not None else None
+    return {"pr": pr, "c": c, "x_base": xb, "x_ext": g0["x_ext"], "tsplit": tsplit, "fn": fn,
+            "slips": (s, F, br), "base_extrema": None if cb is None else (cb.peak_i, cb.trough_i)}
 
 
 def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN_UNCERTAINTY,
@@ -454,7 +410,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                                 "extension": "fitted" if ext is not base else
                                 ("none better than the baseline on the training part" if cands else
                                  "none available")}))
-    _rivals(pr, base, fitted, fn_used, u_fn, st, rows, named, effects, notes, rec.y_is_force, arcs, aux.get("ylow"),
+    rivals(pr, base, fitted, fn_used, u_fn, st, rows, named, effects, notes, rec.y_is_force, arcs, aux.get("ylow"),
             replicates, budget)
     # the primary effect: the one whose extension explains most of the training part
     named.sort(key=lambda k: -fitted[k][2])
@@ -497,5 +453,4 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                      baseline_error=g0["e0"], extended_error=g0["e1"], gain=g0["gain"] if named else 0.0,
                      gain_interval=g0["interval"] if named else [0.0, 0.0], n_cycles=c.n, n_replicates=nrep,
                      drop=aux["D"], notes=notes, warnings=warnings,
-                     plot={"pr": pr, "c": c, "x_base": g0["x_base"], "x_ext": g0["x_ext"], "tsplit": tsplit,
-                           "fn": fn_used})
+                     plot=_plot_data(pr, c, fn_used, g0, tsplit))

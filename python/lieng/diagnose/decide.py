@@ -24,7 +24,7 @@ not only on average over them.
 The family-wise false-alarm rate over the candidates is held at ALPHA by
 Holm's step-down procedure (a load that follows the motion and a twin
 branch both named: each is tested again against replicates of the other's
-fitted extension, at the level Holm gave it; see ``lieng.diagnose._rivals``).
+fitted extension, at the level Holm gave it; see :func:`rivals`).
 An effect is **named** when it is significant and its size S - m0 is at
 least the relevance margin stated in
 :data:`.evidence.MARGIN` (and at most the bound its own model allows,
@@ -45,7 +45,8 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "fn_needed", "null_replicates", "calibrate", "fn_sensitivity", "decide", "misfit"]
+__all__ = ["ALPHA", "FN_RATIO", "fn_needed", "null_replicates", "calibrate", "fn_sensitivity", "decide", "misfit",
+           "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
 ALPHA = 0.05
@@ -272,3 +273,58 @@ def misfit(gof: dict, null: dict, features=GOF) -> list:
         if abs(d) > 3.5 * max(s0, 1e-12) and rel > GOF_MARGIN[k]:
             out.append((k, float(gof[k]), m0))
     return out
+
+
+#: pairs of candidates that can stand for each other (a load that follows the
+#: motion bends the slips as a twin branch does)
+RIVALS = ("twin_branch", "load_variation")
+
+
+def _given_rival(pr, k, other, other_ext, fn, u_fn, st, row, y_is_force, arcs, ylow, replicates, budget):
+    """Candidate ``k``'s statistic calibrated again by replicates of the
+    fitted extension ``other_ext`` of its rival (a load extension's load
+    follows the measured channel): (p, effect size), one-sided for effects
+    with a direction; None when too few replicates."""
+    null2, n2 = null_replicates(pr, other_ext, fn, u_fn, B=max(replicates // 2, 10), budget=0.5 * budget,
+                                seed=1, y_is_force=y_is_force, arcs=arcs,
+                                ylow=ylow if other_ext.load_k else None)
+    v, e = null2[k], null2[FN_RATIO]
+    fin = np.isfinite(v)
+    v, e = v[fin], e[fin]
+    if v.size < 5:
+        return None
+    m0, s0, d, _, _, p, _ = calibrate(float(st[k]), row["se"] or 0.0, v, k in ONE_SIDED, e, u_fn)
+    row["given_rival"] = {"rival": other, "null_mean": m0, "null_sd": s0, "effect_size": d, "p": p,
+                          "replicates": n2}
+    return p, (d if k in ONE_SIDED else abs(d))
+
+
+def rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_force, arcs, ylow, replicates,
+            budget):
+    """When a twin branch and a load variation are both named, each is tested
+    again against replicates of the other's fitted extension (at the level
+    Holm's procedure gave it, by its margin), and one that the other's
+    extension accounts for is not named.  A normal *force* is independent
+    evidence of the load (its own variation), which no twin branch makes:
+    then only the twin is tested.  When neither survives the other, both
+    stay named (the record cannot tell them apart)."""
+    if not all(k in named and fitted[k][0] is not base for k in RIVALS):
+        return
+    tests = [("twin_branch", "load_variation")] + ([] if y_is_force else [("load_variation", "twin_branch")])
+    keep = {}
+    for k, other in tests:
+        r = _given_rival(pr, k, other, fitted[other][0], fn, u_fn, st, rows[k], y_is_force, arcs, ylow, replicates, budget)
+        keep[k] = r is None or (r[0] <= rows[k]["holm_level"] and r[1] >= MARGIN[k])
+    if not any(keep.values()) and len(keep) == 2:
+        return
+    for k, ok in keep.items():
+        if ok:
+            continue
+        g = rows[k]["given_rival"]
+        other = g["rival"]
+        rows[k]["named"] = False
+        named.remove(k)
+        effects[:] = [e for e in effects if e["effect"] != k]
+        notes.append(f"{k} is not named: replicates of the fitted {other} extension give a {k} statistic like "
+                     f"the record's ({st[k]:.3g} against {g['null_mean']:.3g} +- {g['null_sd']:.2g} in "
+                     f"{g['replicates']} replicates, p = {g['p']:.2g})")

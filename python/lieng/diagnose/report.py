@@ -10,7 +10,6 @@ from pathlib import Path
 
 import numpy as np
 
-from lieng.diagnose.baseline import slip_friction
 from lieng.io.outputs import dumps_json, plot_name
 from lieng.diagnose.evidence import CANDIDATES
 from lieng.diagnose.extend import METRIC
@@ -131,7 +130,7 @@ def _plots(d, out: Path, source: str) -> None:
 
     from lieng.programs.graf import finish
 
-    pr, c, fn = d.plot["pr"], d.plot["c"], d.plot["fn"]
+    pr, c = d.plot["pr"], d.plot["c"]
     cap = f"lieng diagnose {Path(source).name}: effect {d.effect}"
     t, x = pr.t, pr.x
     fig, ax = plt.subplots(figsize=(10, 4.8), dpi=120)
@@ -148,7 +147,7 @@ def _plots(d, out: Path, source: str) -> None:
     finish(fig, ax, cap, out / "trace.png")
 
     fig, ax = plt.subplots(figsize=(8, 5.6), dpi=120)
-    idx, s, F, br, sid = slip_friction(pr, c, fn)
+    s, F, br = d.plot["slips"]
     ax.plot(s[br < 0], F[br < 0], ".", ms=2, color="C0", label="accelerating half of the slips")
     ax.plot(s[br > 0], F[br > 0], ".", ms=2, color="C3", label="decelerating half of the slips")
     if d.baseline is not None:
@@ -162,13 +161,10 @@ def _plots(d, out: Path, source: str) -> None:
     ax.plot(t[c.peak_i], x[c.peak_i], "o", ms=3, color="C1", label="record: peak")
     ax.plot(t[c.trough_i], x[c.trough_i], "o", ms=3, color="C2", label="record: trough")
     xb = d.plot.get("x_base")
-    if xb is not None:
-        from lieng.diagnose.baseline import pr_like
-        from lieng.diagnose.segment import find_cycles
-
-        cb = find_cycles(pr_like(pr, xb), fn)
-        ax.plot(t[cb.peak_i], xb[cb.peak_i], "x", ms=4, color="C1", label="baseline: peak")
-        ax.plot(t[cb.trough_i], xb[cb.trough_i], "x", ms=4, color="C2", label="baseline: trough")
+    if xb is not None and d.plot.get("base_extrema") is not None:
+        pk, tr = d.plot["base_extrema"]
+        ax.plot(t[pk], xb[pk], "x", ms=4, color="C1", label="baseline: peak")
+        ax.plot(t[tr], xb[tr], "x", ms=4, color="C2", label="baseline: trough")
     ax.axvline(d.plot["tsplit"], color="0.5", ls="--", lw=0.8)
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("x (mm)")
