@@ -121,3 +121,17 @@ def test_cli_json_has_the_issue_keys(tmp_path, capsys):
 def test_cli_bad_input_exit_2(tmp_path, capsys):
     assert main(["twodof", "--preload", "-5"]) == 2
     assert "--preload" in capsys.readouterr().err
+
+
+def test_exact_propagation_agrees_with_runge_kutta():
+    """The exact (matrix-exponential) propagation and the fine Runge-Kutta
+    core follow the same trajectory through the switches (at both belt
+    speeds), and both hold the pins on the belt in stick."""
+    p = T.RigParams()
+    for v0 in (8.38e-4, 8.38e-3):
+        a = T.simulate(p, t_end=20.0, preload=80.0, v0=v0)
+        b = T.simulate(p, t_end=20.0, preload=80.0, v0=v0, method="rk4", nsub=20)
+        assert a.nswitch > 10
+        assert np.max(np.abs(a.theta_deg - b.theta_deg)) < 1e-6
+        assert np.max(np.abs(a.x2 - b.x2)) < 1e-9
+        assert np.array_equal(a.stick, b.stick)

@@ -78,7 +78,7 @@ class RigParams:
         return asdict(self)
 
 
-def matrices(p: RigParams):
+def matrices(p: RigParams, reading=None):
     """M, C, K (2x2) and kn, the normal force per metre of x2."""
     rho = p.r2 / p.r1
     if p.rod:
@@ -136,7 +136,8 @@ class Simulation:
 
 
 def simulate(params: RigParams | None = None, t_end: float = 600.0, preload: float = 80.0,
-             v0: float = rpm_to_belt(0.1), dt: float = 1e-3, nsub: int = 10) -> Simulation:
+             v0: float = rpm_to_belt(0.1), dt: float = 1e-3, nsub: int | None = None, method: str = "exact",
+             x0: tuple | None = None, reading: "Reading | None" = None) -> Simulation:
     """Integrate the 2-DoF model with the switch model (compiled core).
 
     Parameters
@@ -151,38 +152,164 @@ def simulate(params: RigParams | None = None, t_end: float = 600.0, preload: flo
         Belt velocity (m/s).
     dt : float
         Output interval (s).
-    nsub : int
-        Runge-Kutta sub-steps per output interval.
+    nsub : int, optional
+        Sub-steps per output interval: for ``exact``, the event sampling
+        (default: enough that the spectral radius of each regime's matrix
+        times the sub-step is below 1/2); for ``rk4`` the Runge-Kutta
+        sub-steps (default 10).
+    method : {"exact", "rk4"}
+        ``exact``: each regime is linear, propagated by its matrix exponential
+        between switches (events located on the exponential series);
+        ``rk4``: the classical Runge-Kutta core (kept as a cross-check).
+    x0 : (x1, v1, x2, v2), optional
+        The initial state (default Part 1 at rest, the pins on the belt).
+    reading : Reading, optional
+        Which reading of the paper's lost equations builds M, C, K and the
+        normal force (default: :data:`DEFAULT_READING`).
 
     Returns
     -------
     Simulation
-        Part 1 at rest and the pins stuck to the belt (x2' = v0) at t = 0.
     """
     p = params or RigParams()
-    M, C, K, kn = matrices(p)
-    t, x1, v1, x2, v2, fnorm, ffric, state, nswitch = _run(M, C, K, kn, p, preload, v0, t_end, dt, nsub)
+    M, C, K, kn = matrices(p, reading)
+    s0 = np.array([0.0, 0.0, 0.0, float(v0)]) if x0 is None else np.asarray(x0, float)
+    if method == "rk4":
+        t, x1, v1, x2, v2, fnorm, ffric, state, nswitch = _run(M, C, K, kn, p, preload, v0, t_end, dt,
+                                                             10 if nsub is None else nsub, s0)
+    elif method == "exact":
+        t, x1, v1, x2, v2, fnorm, ffric, state, nswitch = _run_exact(M, C, K, kn, p, preload, v0, t_end, dt,
+                                                                   nsub, s0)
+    else:
+        raise LiengInputError(f"method {method!r}: 'exact' or 'rk4'")
     return Simulation(t, x1, x2, v1, v2, np.degrees(x1 / p.r1), fnorm, ffric, state, nswitch, p,
                       float(preload), float(v0))
 
 
-def _run(M, C, K, kn, p, preload, v0, t_end, dt, nsub):
-    """Check the run's numbers and call the compiled core from Part 1 at rest
-    and the pins on the belt; returns t and the core's series."""
+def _check_run(preload, v0, t_end, dt):
     for name, val in (("t_end", t_end), ("preload", preload), ("v0", v0), ("dt", dt)):
         if not (math.isfinite(val) and val > 0):
             raise LiengInputError(f"--{name.replace('_', '-')} {val}: must be a positive number")
     n = int(round(t_end / dt)) + 1
     if n > 20_000_000:
         raise LiengInputError(f"t_end / dt = {n}: too many samples (at most 2e7)")
+    return n
+
+
+def _run(M, C, K, kn, p, preload, v0, t_end, dt, nsub, s0):
+    """Check the run's numbers and call the Runge-Kutta core; returns t and
+    the core's series."""
+    n = _check_run(preload, v0, t_end, dt)
     if not 1 <= nsub <= 10000:
         raise LiengInputError(f"nsub = {nsub} must be 1..10000")
-    out = _core.core_twodof(n, dt, nsub, M, C, K, float(preload), kn, p.mus, p.muk, float(v0), p.eta,
-                            np.array([0.0, 0.0, 0.0, float(v0)]))
+    out = _core.core_twodof(n, dt, nsub, M, C, K, float(preload), kn, p.mus, p.muk, float(v0), p.eta, s0)
     x1, v1, x2, v2, fnorm, ffric, state, nswitch, status = out
     if status != st.OK:
         raise LiengInputError(f"the integration failed ({st.name(status)}): check the parameters")
     return np.arange(n) * dt, x1, v1, x2, v2, fnorm, ffric, state.astype(bool), int(nswitch)
+
+
+#: order of the exponential series for part-steps and event polynomials (the sub-step keeps the
+#: spectral radius times the step below 1/2: the truncation is below 1e-25)
+KORD = 20
+
+
+def regime_matrices(M, C, K, kn, preload, mus, muk, v0, isl=1):
+    """The three linear regimes of the switch model for M q'' + C q' + K q =
+    e_isl Ff, N = Fn + kn q_isl, in the augmented state z = (q, q', 1):
+    A[0] stick (q_isl' = v0 held; the other DoFs free), A[1] slip with the
+    friction forward (Ff = +muk N), A[2] slip backward.  Returns A, the
+    holding-force row (Ff = hold . z in stick), the normal-force row and the
+    event rows: stick mus N - Ff and mus N + Ff, slip +(v0 - q_isl'),
+    slip -(q_isl' - v0)."""
+    M, C, K = (np.asarray(X, float) for X in (M, C, K))
+    nd = M.shape[0]
+    nz = 2 * nd + 1
+    kn_vec = np.atleast_1d(np.asarray(kn, float))
+    nq = np.zeros(nd)
+    if kn_vec.size == 1:
+        nq[isl] = kn_vec[0]
+    else:
+        nq[:] = kn_vec
+    nrow = np.concatenate([nq, np.zeros(nd), [float(preload)]])
+    A = np.zeros((3, nz, nz))
+    Minv = np.linalg.inv(M)
+    e = np.zeros(nd)
+    e[isl] = 1.0
+    for r, d in ((1, 1.0), (2, -1.0)):
+        Keff = K - d * muk * np.outer(e, nq)
+        f = d * muk * preload * e
+        A[r, :nd, nd:2 * nd] = np.eye(nd)
+        A[r, nd:2 * nd, :nd] = -Minv @ Keff
+        A[r, nd:2 * nd, nd:2 * nd] = -Minv @ C
+        A[r, nd:2 * nd, -1] = Minv @ f
+    # stick: the free DoFs obey their rows with q_isl'' = 0; the holding force closes the pins' row
+    fr = [i for i in range(nd) if i != isl]
+    A[0, :nd, nd:2 * nd] = np.eye(nd)
+    hold = np.zeros(nz)
+    if fr:
+        Mff = M[np.ix_(fr, fr)]
+        rows = -np.linalg.solve(Mff, np.hstack([K[fr], C[fr]]))        # q_f'' = rows . (q, q')
+        for j, i in enumerate(fr):
+            A[0, nd + i, :2 * nd] = rows[j]
+        acc = np.zeros((nd, 2 * nd))
+        acc[fr] = rows
+        hold[:2 * nd] = M[isl] @ acc + np.concatenate([K[isl], C[isl]])
+    else:
+        hold[:2 * nd] = np.concatenate([K[isl], C[isl]])
+    ev = np.zeros((3, 2, nz))
+    ev[0, 0] = mus * nrow - hold
+    ev[0, 1] = mus * nrow + hold
+    ev[1, 0, nd + isl], ev[1, 0, -1] = -1.0, v0
+    ev[2, 0, nd + isl], ev[2, 0, -1] = 1.0, -v0
+    return A, hold, nrow, ev
+
+
+def _run_exact(M, C, K, kn, p, preload, v0, t_end, dt, nsub, s0, isl=1):
+    """The exact propagation: expm of each regime's matrix over the sub-step,
+    the event polynomials, and the compiled stepping; returns t and the series
+    as ``_run`` does (the forces evaluated from the state)."""
+    from scipy.linalg import expm
+
+    n = _check_run(preload, v0, t_end, dt)
+    A, hold, nrow, ev = regime_matrices(M, C, K, kn, preload, p.mus, p.muk, v0, isl)
+    nz = A.shape[1]
+    rad = max(float(np.max(np.abs(np.linalg.eigvals(a)))) for a in A)
+    if nsub is None:
+        nsub = max(1, int(math.ceil(rad * dt / 0.5)))
+    if not 1 <= nsub <= 10000:
+        raise LiengInputError(f"nsub = {nsub} must be 1..10000")
+    h = dt / nsub
+    phi = np.stack([expm(a * h) for a in A])
+    coef = np.zeros((KORD + 1, nz, 2, 3))
+    for r in range(3):
+        for e_ in range(2 if r == 0 else 1):
+            row = ev[r, e_].copy()
+            for k in range(KORD + 1):
+                coef[k, :, e_, r] = row
+                row = row @ A[r] / (k + 1)
+    nd = (nz - 1) // 2
+    z0 = np.zeros(nz)
+    z0[-1] = 1.0
+    # s0 = (x1, v1, x2, v2) for two DoFs; (q, q') for more
+    if nd == 2:
+        z0[[0, 2, 1, 3]] = s0
+    else:
+        z0[:2 * nd] = s0
+    out = _core.core_twodof_exact(n, nsub, h, np.asfortranarray(A.transpose(1, 2, 0)),
+                                  np.asfortranarray(phi.transpose(1, 2, 0)), np.asfortranarray(coef),
+                                  np.array([2, 1, 1], np.int32), nd + isl + 1, float(v0), p.eta, p.mus, hold,
+                                  nrow, z0)
+    z, state, nswitch, status = out
+    if status != st.OK:
+        raise LiengInputError(f"the integration failed ({st.name(status)}): check the parameters")
+    stick = state == 1
+    fnorm = np.maximum(nrow @ z, 0.0)
+    ffric = np.where(stick, hold @ z, np.where(state == 2, 1.0, -1.0) * p.muk * fnorm)
+    t = np.arange(n) * dt
+    if nd == 2:
+        return t, z[0], z[2], z[1], z[3], fnorm, ffric, stick, int(nswitch)
+    return t, z, fnorm, ffric, stick, int(nswitch)
 
 
 def onedof(params: RigParams | None = None, load_correction: bool = False, **kw) -> Simulation:
@@ -203,8 +330,9 @@ def onedof(params: RigParams | None = None, load_correction: bool = False, **kw)
     C = np.array([[0.0, 0.0], [0.0, c_eq]])
     preload = kw.pop("preload", 80.0)
     v0 = kw.pop("v0", rpm_to_belt(0.1))
-    t, _, _, x2, v2, fnorm, ffric, state, nswitch = _run(M, C, K, kn, p, preload, v0, kw.pop("t_end", 600.0),
-                                                         kw.pop("dt", 1e-3), kw.pop("nsub", 10))
+    t, _, _, x2, v2, fnorm, ffric, state, nswitch = _run_exact(M, C, K, kn, p, preload, v0,
+                                                               kw.pop("t_end", 600.0), kw.pop("dt", 1e-3),
+                                                               kw.pop("nsub", None), np.array([0.0, 0.0, 0.0, v0]))
     x1 = x2 / rho
     return Simulation(t, x1, x2, v2 / rho, v2, np.degrees(x1 / p.r1), fnorm, ffric, state, nswitch, p,
                       float(preload), float(v0))
