@@ -111,23 +111,28 @@ class Reading:
     ``twodof.md`` scores them).  Table 2's values are kept in all."""
 
     kinetic: str = "rod+tip"
-    k3_proj: str = "cos2"
+    k3_proj: str = "sin2"
     normal: str = "+sincos"
-    m1: str = "table"
-    radius: float = 0.08       # friction radius (m): the pins' r2 (lever ratio) and where the belt is read
+    m1: str = "r1"
+    radius: float = 0.09       # friction radius (m): the pins' r2 (lever ratio) and where the belt is read
     belt: str = "sec5"
+    dof: int = 2               # 3: the pins' normal displacement a degree of freedom (contact_stiffness)
 
     def __post_init__(self):
         for name, val, allowed in (("kinetic", self.kinetic, tuple(KINETIC)), ("k3_proj", self.k3_proj, K3_PROJ),
                                    ("normal", self.normal, NORMAL), ("m1", self.m1, M1_REF),
-                                   ("belt", self.belt, tuple(BELT)), ("radius", self.radius, (0.08, 0.09))):
+                                   ("belt", self.belt, tuple(BELT)), ("radius", self.radius, (0.08, 0.09)),
+                                   ("dof", self.dof, (2, 3))):
             if val not in allowed:
                 raise LiengInputError(f"reading {name} {val!r}: one of {', '.join(map(str, allowed))}")
+        if self.dof == 3 and (self.k3_proj == "full" or self.normal.lstrip("+-") == "sin"):
+            raise LiengInputError(f"reading {self.k3_proj}/{self.normal} with 3dof: the normal degree of freedom "
+                                  f"takes k3's geometry (cos2 or sin2, +sincos, -sincos or none)")
 
     @property
     def name(self) -> str:
         return (f"{self.kinetic}/{self.k3_proj}/{self.normal}/m1-{self.m1}/r{round(self.radius * 1000)}/"
-                f"{self.belt}")
+                f"{self.belt}" + ("/3dof" if self.dof == 3 else ""))
 
     def belt_speed(self, rpm: float = 0.1) -> float:
         """The belt velocity (m/s) of this reading at ``rpm``."""
@@ -137,20 +142,26 @@ class Reading:
         return {"name": self.name, **asdict(self)}
 
 
-#: the reading the search of ``tests/studies/twodof_readings.py`` ranks first (``twodof.md``)
+#: the reading the search of ``tests/studies/twodof_readings.py`` ranks first (``twodof.md``): Part 2 half
+#: rod, half lumped at the pin end; k3's angle read from the normal (sin^2 a tangential); N rising with x2;
+#: m1 = J1 / r1^2; the friction radius of sec. 2.2 (90 mm); sec. 5's belt (x10 of 0.1 rpm)
 DEFAULT_READING = Reading()
 #: the reconstruction before the search (issue 15), kept for comparison
-PREVIOUS_READING = Reading(kinetic="rod", belt="sec4.3")
-#: the named variants of ``lieng twodof --reading``
+PREVIOUS_READING = Reading(kinetic="rod", k3_proj="cos2", normal="+sincos", m1="table", radius=0.08, belt="sec4.3")
+#: the named variants of ``lieng twodof --reading`` (each differs from the default in one choice, but
+#: ``previous``)
 READINGS = {
     "default": DEFAULT_READING,
     "previous": PREVIOUS_READING,
-    "point": Reading(kinetic="point"),
-    "rod": Reading(kinetic="rod"),
-    "slow-belt": Reading(belt="sec4.3"),
-    "r90": Reading(radius=0.09),
-    "minus-normal": Reading(normal="-sincos"),
-    "m1-r1": Reading(m1="r1"),
+    "rod": replace(DEFAULT_READING, kinetic="rod"),
+    "point": replace(DEFAULT_READING, kinetic="point"),
+    "cos2": replace(DEFAULT_READING, k3_proj="cos2"),
+    "no-normal": replace(DEFAULT_READING, normal="none"),
+    "minus-normal": replace(DEFAULT_READING, normal="-sincos"),
+    "m1-table": replace(DEFAULT_READING, m1="table"),
+    "r80": replace(DEFAULT_READING, radius=0.08),
+    "slow-belt": replace(DEFAULT_READING, belt="sec4.3"),
+    "3dof": replace(DEFAULT_READING, dof=3),
 }
 
 
@@ -160,6 +171,9 @@ def parse_reading(text: str) -> Reading:
     if text in READINGS:
         return READINGS[text]
     parts = text.split("/")
+    dof = 2
+    if len(parts) == 7 and parts[6] == "3dof":
+        parts, dof = parts[:6], 3
     if len(parts) != 6 or not parts[3].startswith("m1-") or not parts[4].startswith("r"):
         raise LiengInputError(f"--reading {text!r}: one of {', '.join(READINGS)} or "
                               f"KINETIC/K3PROJ/NORMAL/m1-REF/rRADIUS/BELT (e.g. {DEFAULT_READING.name})")
@@ -168,7 +182,7 @@ def parse_reading(text: str) -> Reading:
     except ValueError:
         raise LiengInputError(f"--reading {text!r}: the radius is r80 or r90") from None
     return Reading(kinetic=parts[0], k3_proj=parts[1], normal=parts[2], m1=parts[3][3:], radius=radius,
-                   belt=parts[5])
+                   belt=parts[5], dof=dof)
 
 
 def matrices(p: RigParams, reading: Reading | None = None):
@@ -191,11 +205,59 @@ def matrices(p: RigParams, reading: Reading | None = None):
     return M, C, K, kn
 
 
-def modal_frequencies(p: RigParams, reading: Reading | None = None) -> np.ndarray:
-    """Undamped natural frequencies (Hz) without contact (the pins off the disc)."""
+#: the measured normal frequency of a pin (Hz, sec. 3.1)
+NORMAL_MODE = 39.73
+
+
+def contact_stiffness(p: RigParams, reading: Reading | None = None) -> float:
+    """The disc's contact stiffness (N/m, both pins) of the 3-DoF reading:
+    not in Table 2, identified so that the highest mode with the pins on the
+    disc is the measured 39.73 Hz (the legs, m2, on both compressive springs,
+    2 k4, k3 and the contact)."""
+    from scipy.optimize import brentq
+
+    rd = replace(reading or DEFAULT_READING, dof=3)
+
+    def top(kc):
+        return float(modal_frequencies(p, rd, kc=kc)[-1]) - NORMAL_MODE
+
+    return float(brentq(top, 0.0, 1e7, xtol=1e-9, rtol=1e-14))
+
+
+def matrices3(p: RigParams, reading: Reading, kc: float | None = None):
+    """M, C, K (3x3) of (x1, x2, y), y the pins' normal displacement towards
+    the disc, and the normal-force row: N = Fn + kc y.  k3's axial
+    deflection is x2 cos a -/+ y sin a (the reading's sign: N rising with x2
+    for '+'); the legs move rigidly in the normal direction (mass m2) on the
+    two compressive springs (2 k4) and the disc's contact stiffness kc
+    (:func:`contact_stiffness`).  With kc -> infinity, y -> 0 and N ->
+    Fn +/- k3 sin a cos a x2: the 2-DoF reading's law."""
+    M2, C2, K2, _ = matrices(p, reading)
+    ca, sa = math.cos(p.alpha), math.sin(p.alpha)
+    if reading.k3_proj == "sin2":
+        ca, sa = sa, ca
+    sgn = {"+": -1.0, "-": 1.0}.get(reading.normal[0], 0.0)
+    kc = contact_stiffness(p, reading) if kc is None else float(kc)
+    M = np.zeros((3, 3))
+    K = np.zeros((3, 3))
+    C = np.zeros((3, 3))
+    M[:2, :2], K[:2, :2], C[:2, :2] = M2, K2, C2
+    M[2, 2] = p.m2
+    K[2, 2] = 2 * p.k4 + kc + p.k3 * sa * sa
+    K[1, 2] = K[2, 1] = sgn * p.k3 * sa * ca
+    C[2, 2] = p.c3 * sa * sa
+    C[1, 2] = C[2, 1] = sgn * p.c3 * sa * ca
+    return M, C, K, np.array([0.0, 0.0, kc])
+
+
+def modal_frequencies(p: RigParams, reading: Reading | None = None, kc: float | None = None) -> np.ndarray:
+    """Undamped natural frequencies (Hz) without contact (the pins off the
+    disc); in the 3-DoF reading the normal mode with the pins on the disc
+    (contact stiffness), as in sec. 3.1's normal modal test."""
     from scipy.linalg import eigh
 
-    M, _, K, _ = matrices(p, reading)
+    rd = reading or DEFAULT_READING
+    M, _, K, _ = matrices3(p, rd, kc) if rd.dof == 3 else matrices(p, rd)
     return np.sqrt(eigh(K, M, eigvals_only=True)) / (2 * math.pi)
 
 
@@ -206,6 +268,7 @@ def identify_k2(p: RigParams, targets=MEASURED_MODES, reading: Reading | None = 
     from scipy.optimize import minimize_scalar
 
     tg = np.log(np.asarray(targets, float))
+    reading = replace(reading or DEFAULT_READING, dof=2)          # the tangential modes
 
     def err(lk):
         return float(np.sum((np.log(modal_frequencies(replace(p, k2=math.exp(lk)), reading)) - tg) ** 2))
@@ -233,6 +296,7 @@ class Simulation:
     params: RigParams
     preload: float
     v0: float
+    y: np.ndarray | None = None     # the pins' normal displacement (3-DoF reading)
 
 
 def simulate(params: RigParams | None = None, t_end: float = 600.0, preload: float = 80.0,
@@ -274,8 +338,16 @@ def simulate(params: RigParams | None = None, t_end: float = 600.0, preload: flo
     p = params or RigParams()
     rd = reading or DEFAULT_READING
     v0 = rd.belt_speed() if v0 is None else float(v0)
-    M, C, K, kn = matrices(p, rd)
     s0 = np.array([0.0, 0.0, 0.0, float(v0)]) if x0 is None else np.asarray(x0, float)
+    if rd.dof == 3:
+        if method != "exact":
+            raise LiengInputError("the 3-DoF reading runs with method 'exact' only")
+        M, C, K, nq = matrices3(p, rd)
+        z0 = np.array([s0[0], s0[2], 0.0, s0[1], s0[3], 0.0])
+        t, z, fnorm, ffric, state, nswitch = _run_exact(M, C, K, nq, p, preload, v0, t_end, dt, nsub, z0)
+        return Simulation(t, z[0], z[1], z[3], z[4], np.degrees(z[0] / p.r1), fnorm, ffric, state, nswitch, p,
+                          float(preload), float(v0), z[2])
+    M, C, K, kn = matrices(p, rd)
     if method == "rk4":
         t, x1, v1, x2, v2, fnorm, ffric, state, nswitch = _run(M, C, K, kn, p, preload, v0, t_end, dt,
                                                              10 if nsub is None else nsub, s0)
@@ -641,7 +713,7 @@ def checks(res: dict) -> dict:
 
 def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, params: RigParams | None = None,
             keep: dict | None = None, belt: float | None = None, reading: Reading | None = None,
-            members: int = 8) -> dict:
+            members: int = 8, with_onedof: bool = True) -> dict:
     """``lieng twodof``'s JSON: the reading, modal frequencies, the 2-DoF
     metrics as an ensemble over ``members`` initial states (median, range,
     definitions, regime fractions), one run's metrics, the 1-DoF (constant
@@ -659,11 +731,9 @@ def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, param
     sims: list = []
     ens = ensemble(p, rd, preload=preload, v0=v0, t_end=t_end, members=members, keep=sims)
     s2 = sims[0]
-    s1 = onedof(p, t_end=t_end, preload=preload, v0=v0, reading=rd)
-    sc = onedof(p, load_correction=True, t_end=t_end, preload=preload, v0=v0, reading=rd)
     k2, fk2 = identify_k2(p, reading=rd)
     out = {"reading": rd.to_json(), "modal_hz": [float(f) for f in modal_frequencies(p, rd)], **ens,
-           "single_run": metrics(s2), "onedof": metrics(s1), "onedof_load_corrected": metrics(sc),
+           "single_run": metrics(s2),
            "k2_identified": {"k2": k2, "modal_hz": [float(f) for f in fk2], "table2_k2": p.k2},
            "preload_n": float(preload), "rpm": float(rpm), "belt_m_s": v0, "t_end_s": float(t_end),
            "params": p.to_json()}
@@ -673,8 +743,14 @@ def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, param
         if float(preload) == 80.0:
             out["paper"]["m2_lines_hz"] = list(PAPER_M2_LINES)
     out["checks"] = checks(out)
+    if with_onedof:
+        s1 = onedof(p, t_end=t_end, preload=preload, v0=v0, reading=rd)
+        sc = onedof(p, load_correction=True, t_end=t_end, preload=preload, v0=v0, reading=rd)
+        out.update({"onedof": metrics(s1), "onedof_load_corrected": metrics(sc)})
     if keep is not None:
-        keep.update({"2-DoF": s2, "1-DoF": s1, "1-DoF C_N": sc, "ensemble": sims})
+        keep.update({"2-DoF": s2, "ensemble": sims})
+        if with_onedof:
+            keep.update({"1-DoF": s1, "1-DoF C_N": sc})
     return out
 
 
@@ -693,8 +769,9 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
 
     out = Path(outdir)
     (out / "twodof.json").write_text(dumps_json(res, indent=2) + "\n", encoding="utf-8")
-    cap = (f"lieng twodof: dual-pin-on-disc rig (seed 001), Fn = {res['preload_n']:g} N, {res['rpm']:g} rpm; "
-           f"2-DoF reconstruction vs the thesis's 1-DoF model (constant load)")
+    cap = (f"lieng twodof: dual-pin-on-disc rig (seed 001), Fn = {res['preload_n']:g} N, belt "
+           f"{res['belt_m_s']:.4g} m/s, reading {res['reading']['name']}; 2-DoF reconstruction vs the thesis's "
+           f"1-DoF model (constant load)")
     two, one = sims["2-DoF"], sims["1-DoF"]
     fig, ax = plt.subplots(2, 1, figsize=(10, 7), dpi=110)
     for lab, s, kw in (("2-DoF", two, {"color": "C0"}), ("1-DoF (constant N)", one, {"color": "C1"})):
@@ -730,3 +807,22 @@ def write_outputs(res: dict, sims: dict, outdir) -> None:
     ax.set_xlabel("frequency (Hz) — dotted: the paper's measured 0.7, 0.9, 1.1 Hz")
     ax.set_ylabel("amplitude of the angle (deg)")
     finish(fig, ax, cap, out / "spectrum.png")
+    ens = sims.get("ensemble") or []
+    if ens:
+        fig, ax = plt.subplots(2, 1, figsize=(10, 7), dpi=110, sharex=True,
+                               gridspec_kw={"height_ratios": [2, max(1, len(ens)) / 4]})
+        first = regimes(ens[0])
+        ax[0].plot(ens[0].t, ens[0].theta_deg, lw=0.4, color="C0")
+        for t0, lab in zip(first["window_start_s"], first["labels"]):
+            if lab:
+                ax[0].axvspan(t0, t0 + 5.0, color="C2", alpha=0.15, lw=0)
+        ax[0].set_ylabel("angle of Part 1 (deg)")
+        ax[0].set_title("initial state 1: green = regular windows (5 s), white = bursts", fontsize=9)
+        for i, sim in enumerate(ens):
+            rg = first if i == 0 else regimes(sim)
+            for t0, lab in zip(rg["window_start_s"], rg["labels"]):
+                ax[1].broken_barh([(t0, 5.0)], (i + 0.1, 0.8), color="C2" if lab else "C3")
+        ax[1].set_yticks(np.arange(len(ens)) + 0.5, [str(i + 1) for i in range(len(ens))])
+        ax[1].set_ylabel("initial state")
+        ax[1].set_xlabel("time (s) — regime of each 5 s window of the steady state: green regular, red burst")
+        finish(fig, list(ax), cap + f"; regimes over an ensemble of {len(ens)}", out / "regimes.png")

@@ -183,8 +183,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "(e.g. 0.00838, sec. 5's value)")
     td.add_argument("--reading", default="default",
                     help="which reading of the paper's lost equations (default: the best of the search in "
-                         "twodof.md; named: default, previous, point, rod, slow-belt, r90, minus-normal, m1-r1; or "
-                         "KINETIC/K3PROJ/NORMAL/m1-REF/rRADIUS/BELT)")
+                         "twodof.md; named: default, previous, rod, point, cos2, no-normal, minus-normal, m1-table, "
+                         "r80, slow-belt, 3dof; or KINETIC/K3PROJ/NORMAL/m1-REF/rRADIUS/BELT[/3dof])")
     td.add_argument("--members", type=int, default=8,
                     help="initial states of the ensemble (1-64, default 8): every metric as median and range")
     td.add_argument("-o", "--outdir", help="write twodof.json and plots here")
