@@ -233,7 +233,7 @@ contains
    !> switched (Leine's switch model: stick -> slip in the direction of the
    !> holding force; slip -> stick if the holding force with the pins on the
    !> belt is within mus N, else slip on in its direction).
-   subroutine twodof_exact(n, nz, nsub, h, kord, a, phi, coef, nev, iv, v0, eta, mus, hold, nrow, z0, &
+   subroutine twodof_exact(n, nz, nsub, h, kord, a, phi, coef, gs, nev, iv, v0, eta, mus, hold, nrow, z0, &
                            z, state, nswitch, status)
       integer, intent(in) :: n                    !< output samples (>= 2)
       integer, intent(in) :: nz                   !< size of the augmented state (2 DoFs: 5)
@@ -243,6 +243,7 @@ contains
       real(wp), intent(in) :: a(nz, nz, 3)        !< regime matrices
       real(wp), intent(in) :: phi(nz, nz, 3)      !< expm(a h)
       real(wp), intent(in) :: coef(0:kord, nz, 2, 3)  !< the event polynomials' rows
+      real(wp), intent(in) :: gs(nz, 4, 2, 3)     !< the event functions at s = h/4, h/2, 3h/4, h of a full step
       integer, intent(in) :: nev(3)               !< event functions per regime (1 or 2)
       integer, intent(in) :: iv                   !< index of the pins' velocity in z
       real(wp), intent(in) :: v0                  !< belt velocity (m/s)
@@ -278,16 +279,21 @@ contains
             hl = h
             nsw_step = 0
             do while (hl > 0.0_wp)
-               ! the event polynomials from the current state
-               do e = 1, nev(regime)
-                  p(:, e) = matmul(coef(:, :, e, regime), s)
-               end do
                sev = huge(1.0_wp)
                do e = 1, nev(regime)
-                  if (p(0, e) < 0.0_wp .and. .not. fresh) then
+                  gj(0) = dot_product(coef(0, :, e, regime), s)
+                  if (gj(0) < 0.0_wp .and. .not. fresh) then
                      sev = 0.0_wp                  ! already across (rounding at a step's end)
                      exit
                   end if
+                  ! a full step: the samples from their precomputed rows; the polynomial only if a sign changes
+                  if (hl == h) then
+                     do jj = 1, 4
+                        gj(jj) = dot_product(gs(:, jj, e, regime), s)
+                     end do
+                     if (.not. any(gj(1:4) <= 0.0_wp)) cycle
+                  end if
+                  p(:, e) = matmul(coef(:, :, e, regime), s)
                   sj(0) = 0.0_wp
                   gj(0) = p(0, e)
                   do jj = 1, 4

@@ -462,6 +462,10 @@ def _run_exact(M, C, K, kn, p, preload, v0, t_end, dt, nsub, s0, isl=1):
             for k in range(KORD + 1):
                 coef[k, :, e_, r] = row
                 row = row @ A[r] / (k + 1)
+    # the event functions at the four sample points of a full step: sum_k coef_k s_j^k (rows)
+    sj = h * np.arange(1, 5) / 4.0
+    powers = sj[None, :] ** np.arange(KORD + 1)[:, None]               # (KORD+1, 4)
+    gs = np.einsum("kzer,kj->zjer", coef, powers)
     nd = (nz - 1) // 2
     z0 = np.zeros(nz)
     z0[-1] = 1.0
@@ -472,6 +476,7 @@ def _run_exact(M, C, K, kn, p, preload, v0, t_end, dt, nsub, s0, isl=1):
         z0[:2 * nd] = s0
     out = _core.core_twodof_exact(n, nsub, h, np.asfortranarray(A.transpose(1, 2, 0)),
                                   np.asfortranarray(phi.transpose(1, 2, 0)), np.asfortranarray(coef),
+                                  np.asfortranarray(gs),
                                   np.array([2, 1, 1], np.int32), nd + isl + 1, float(v0), p.eta, p.mus, hold,
                                   nrow, z0)
     z, state, nswitch, status = out
