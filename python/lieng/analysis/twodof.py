@@ -1,18 +1,20 @@
 """The 2-DoF dual-pin-on-disc model of the second seed (``001_...txt``),
-reconstructed (its equations (1)-(12) were images and are lost), solved by
-the compiled switch-model integrator (``fortran/twodof.f90``), and set
-beside the thesis's 1-DoF model of the same rig.
+reconstructed (its equations (1)-(12) were images and are lost), propagated
+exactly between the switches of Leine's switch model (each regime is linear:
+matrix exponentials, events on the exponential series; ``fortran/twodof.f90``),
+reported as ensembles over initial states (the steady state is chaotic), and
+set beside the thesis's 1-DoF model of the same rig.
 
-The reconstruction, each term traced to the seed's sentences, is in
-``python/lieng/twodof.md``.  In short, with x1 = r1*theta1 (Part 1 at the
-tensile spring's lever), x2 the pins' tangential displacement and
-rho = r2/r1:
+The text admits several readings of the lost equations (:class:`Reading`);
+``python/lieng/analysis/twodof.md`` traces each to the seed's sentences and
+scores them (``tests/studies/twodof_readings.py``).  The default, with
+x1 = r1 theta1 (Part 1 at the tensile spring's lever), x2 the pins'
+tangential displacement and rho = r2/r1 (r2 the 90 mm friction radius):
 
-    M = [[m1 + m2 rho^2/3, m2 rho/6], [m2 rho/6, m2/3]]        (App.: Part 2 a rigid rod,
-                                                               linear velocity distribution)
-    K = [[k1 + rho^2 k2, -rho k2], [-rho k2, k2 + k3 cos^2 a]]
-    C = [[c1 + rho^2 c2, -rho c2], [-rho c2, c2 + c3 cos^2 a]]
-    N = Fn + k3 sin a cos a x2                                 (the inclined spring k3)
+    M = [[m1 + m2 rho^2/6, m2 rho/12], [m2 rho/12, 2 m2/3]]   (Part 2 half a rod with a linear velocity
+                                                              profile, half lumped at the pin end)
+    K = [[k1 + rho^2 k2, -rho k2], [-rho k2, k2 + k3 sin^2 a]]
+    N = Fn + k3 sin a cos a x2,  m1 = J1 / r1^2,  v0 = 0.00838 x 0.09 / 0.08 m/s (sec. 5's belt)
     slip: Ff = muk N sign(v0 - x2'),  stick: x2' = v0 while |Ff| <= mus N.
 """
 
@@ -27,8 +29,10 @@ from lieng import _core
 from lieng.errors import LiengInputError
 from lieng import status as st
 
-__all__ = ["RigParams", "matrices", "modal_frequencies", "identify_k2", "simulate", "Simulation", "metrics",
-           "onedof", "compare", "PAPER", "rpm_to_belt", "write_outputs"]
+__all__ = ["RigParams", "Reading", "READINGS", "DEFAULT_READING", "PREVIOUS_READING", "parse_reading", "matrices",
+           "matrices3", "contact_stiffness", "modal_frequencies", "identify_k2", "regime_matrices", "simulate",
+           "Simulation", "metrics", "m2_lines", "regimes", "rise_and_fall", "initial_states", "ensemble", "checks",
+           "onedof", "compare", "PAPER", "PAPER_M2_LINES", "rpm_to_belt", "write_outputs"]
 
 #: The paper's Tables 3 and 4 (experiment, theory) at 0.1 rpm: peak angle of
 #: Part 1 (deg), amplitude of its fluctuation (deg), dominant frequency (Hz).
@@ -181,8 +185,11 @@ def parse_reading(text: str) -> Reading:
         radius = int(parts[4][1:]) / 1000.0
     except ValueError:
         raise LiengInputError(f"--reading {text!r}: the radius is r80 or r90") from None
-    return Reading(kinetic=parts[0], k3_proj=parts[1], normal=parts[2], m1=parts[3][3:], radius=radius,
-                   belt=parts[5], dof=dof)
+    try:
+        return Reading(kinetic=parts[0], k3_proj=parts[1], normal=parts[2], m1=parts[3][3:], radius=radius,
+                       belt=parts[5], dof=dof)
+    except LiengInputError as exc:
+        raise LiengInputError(f"--{exc}") from None
 
 
 def matrices(p: RigParams, reading: Reading | None = None):
