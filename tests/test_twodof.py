@@ -257,3 +257,21 @@ def test_three_dof_reduces_to_the_two_dof_normal_law():
     s = T.simulate(p, t_end=10.0, preload=80.0, reading=rd)
     assert s.y is not None and np.all(s.normal > 0)
     assert s.nswitch > 0 and np.max(np.abs(s.v2[s.stick] - s.v0)) <= p.eta
+
+
+@pytest.mark.slow
+def test_default_reading_against_the_paper_numbers():
+    """What twodof.md claims for the default reading, from the paper's own
+    numbers (8 x 600 s at 80 N and 100 N): the 19.53 Hz mode with Table 2's
+    k2, the measured peaks inside the ensemble's range widened by 15 %, the
+    m2 lines within 0.15 Hz of Fig. 12; and what it does not reach: the
+    dominant frequency stays at the lever mode, above 0.68 / 0.64 Hz by more
+    than 5 %."""
+    for load in (80.0, 100.0):
+        r = T.compare(preload=load, with_onedof=False)
+        assert r["checks"]["mode_19_53"] and r["checks"]["peak_in_range"]
+        assert r["peak_deg"]["median"] == pytest.approx(T.PAPER[load]["experiment"]["peak_deg"], rel=0.04)
+        assert not r["checks"]["dominant_5pct"]
+        assert r["dominant_hz"]["median"] == pytest.approx(T.modal_frequencies(T.RigParams())[0], rel=0.03)
+        if load == 80.0:
+            assert r["checks"]["m2_lines_0_15hz"]
