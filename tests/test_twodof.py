@@ -275,3 +275,20 @@ def test_default_reading_against_the_paper_numbers():
         assert r["dominant_hz"]["median"] == pytest.approx(T.modal_frequencies(T.RigParams())[0], rel=0.03)
         if load == 80.0:
             assert r["checks"]["m2_lines_0_15hz"]
+
+
+def test_rise_and_fall_counts_the_interior_maxima_of_the_friction():
+    """One rise-and-fall between the trough after Part 1's drop and the new
+    peak is the measured pattern; a plain ramp has none, a friction with two
+    bumps per cycle has two."""
+    from types import SimpleNamespace
+
+    t = np.arange(0, 120, 1e-3)
+    ph = (t * 0.7) % 1.0                              # Part 1's saw-tooth: rise, then a drop
+    theta = 4 + ph
+    one = 20 * ph + 6 * np.exp(-((ph - 0.3) / 0.1) ** 2)
+    two = one + 6 * np.exp(-((ph - 0.65) / 0.1) ** 2)
+    for fr, frac, nmax in ((20 * ph, 0.0, 0), (one, 1.0, 1), (two, 0.0, 2)):
+        r = T.rise_and_fall(SimpleNamespace(t=t, theta_deg=theta, friction=fr))
+        assert r["one"] == pytest.approx(frac, abs=0.05)
+        assert r["maxima_per_cycle"] == nmax

@@ -620,12 +620,15 @@ def regimes(sim: Simulation, steady_from: float = 0.5, window: float = 5.0) -> d
     return {"regular": frac, "burst": 1.0 - frac, "labels": lab, "window_start_s": starts}
 
 
-def rise_and_fall(sim: Simulation, steady_from: float = 0.5) -> float:
-    """The fraction of Part 1's stick-slip cycles (between its successive
-    maxima) in which the friction force, smoothed over 0.2 s (the pins' own
-    stick-slip removed), has an interior maximum (a rise and fall between
-    the drops) with a prominence of 5 % of the cycle's range or more (the
-    measured "rise-and-fall after each drop", sec. 3.2)."""
+def rise_and_fall(sim: Simulation, steady_from: float = 0.5) -> dict:
+    """The measured "rise-and-fall after each drop" (sec. 3.2: after a sharp
+    drop the friction rises and falls once, fast, before it climbs to a new
+    peak): in each of Part 1's stick-slip cycles (between its successive
+    maxima) the maxima of the friction force smoothed over 0.2 s between
+    the trough after the drop and the new peak, with a prominence of 5 % of
+    the cycle's range or more.  Returns the
+    fraction of cycles with exactly one (the measured pattern) and the median
+    number per cycle."""
     from scipy.signal import find_peaks
 
     dt = float(sim.t[1] - sim.t[0])
@@ -635,16 +638,20 @@ def rise_and_fall(sim: Simulation, steady_from: float = 0.5) -> float:
     th = sim.theta_deg[i0:]
     per = 1.0 / _dominant(th, dt)
     tops, _ = find_peaks(th, distance=max(1, int(0.5 * per / dt)), prominence=0.02)
-    n = hit = 0
+    counts = []
     for a, b in zip(tops[:-1], tops[1:]):
         seg = ff[a:b]
         rng = float(np.ptp(seg)) if seg.size else 0.0
         if rng <= 0:
             continue
-        pk, _ = find_peaks(seg, prominence=0.05 * rng)
-        n += 1
-        hit += int(pk.size >= 1)
-    return hit / n if n else float("nan")
+        lo = int(np.argmin(seg[: max(1, seg.size // 2)]))       # the trough after the drop
+        hi = int(np.argmax(seg[lo:])) + lo                       # the new peak it climbs to
+        pk, _ = find_peaks(seg[lo:hi + 1], prominence=0.05 * rng)
+        counts.append(int(np.count_nonzero((pk > 0) & (pk < hi - lo))))
+    if not counts:
+        return {"one": float("nan"), "maxima_per_cycle": float("nan")}
+    c = np.asarray(counts)
+    return {"one": float(np.mean(c == 1)), "maxima_per_cycle": float(np.median(c))}
 
 
 def _stat(vals) -> dict:
@@ -697,7 +704,8 @@ def ensemble(params: RigParams, reading: Reading | None = None, preload: float =
         "regimes": {"regular": _stat([r["regimes"]["regular"] for r in rows]),
                     "burst": _stat([r["regimes"]["burst"] for r in rows]),
                     "definition": REGIME_DEFINITION},
-        "rise_and_fall": {**_stat([r["rise_and_fall"] for r in rows]),
+        "rise_and_fall": {"one_per_cycle": _stat([r["rise_and_fall"]["one"] for r in rows]),
+                          "maxima_per_cycle": _stat([r["rise_and_fall"]["maxima_per_cycle"] for r in rows]),
                           "definition": " ".join(rise_and_fall.__doc__.split())},
         "switches": _stat([r["nswitch"] for r in rows]),
     }
