@@ -370,3 +370,22 @@ subroutine core_twodof(n, dt, nsub, m, c, k, fn, kn, mus, muk, v0, eta, s0, &
    call twodof_run(n, dt, nsub, m, c, k, fn, kn, mus, muk, v0, eta, s0, x1, v1, x2, v2, fnorm, ffric, state, &
                    nswitch, status)
 end subroutine core_twodof
+
+!> The 2-DoF (or n-DoF) rig propagated exactly between switches (module twodof).
+subroutine core_twodof_exact(n, nz, nsub, h, kord, a, phi, coef, gs, nev, iv, v0, eta, mus, hold, nrow, z0, &
+                             z, state, nswitch, status)
+   use lienard_core, only: wp
+   use twodof, only: twodof_exact
+   implicit none
+   integer, intent(in) :: n, nz, nsub, kord
+   real(wp), intent(in) :: h
+   real(wp), intent(in) :: a(nz, nz, 3), phi(nz, nz, 3), coef(0:kord, nz, 2, 3), gs(nz, 4, 2, 3)
+   integer, intent(in) :: nev(3), iv
+   real(wp), intent(in) :: v0, eta, mus
+   real(wp), intent(in) :: hold(nz), nrow(nz), z0(nz)
+   real(wp), intent(out) :: z(nz, n)
+   integer, intent(out) :: state(n)
+   integer, intent(out) :: nswitch, status
+   call twodof_exact(n, nz, nsub, h, kord, a, phi, coef, gs, nev, iv, v0, eta, mus, hold, nrow, z0, &
+                     z, state, nswitch, status)
+end subroutine core_twodof_exact

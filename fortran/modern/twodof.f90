@@ -20,7 +20,7 @@ module twodof
    use status_codes, only: st_ok, st_bad_argument, st_nonfinite_state
    implicit none
    private
-   public :: twodof_run
+   public :: twodof_run, twodof_exact
 
    integer, parameter :: slip_state = 0, stick_state = 1
 
@@ -218,5 +218,198 @@ contains
       end subroutine record
 
    end subroutine twodof_run
+
+   !> The hybrid model propagated exactly: each regime (1 stick, 2 slip with
+   !> the friction forward, 3 slip backward) is linear in the augmented state
+   !> z = (q, q', 1), z' = A_r z, so a full sub-step is z <- Phi_r z with
+   !> Phi_r = expm(A_r h) (computed by the caller) and a part-step of length
+   !> s <= h is the exponential series of A_r s (order kord; the caller keeps
+   !> the spectral radius of A_r h below 1/2, so the series is exact to
+   !> rounding).  The event functions of a regime are linear in z and so are
+   !> polynomials in s along the flow: g_e(s) = sum_k (coef(k, :, e, r) . z) s^k
+   !> with coef(k) = row_e A_r^k / k!.  Each sub-step samples them at four
+   !> points; the first sign change from > 0 to <= 0 is bisected to machine
+   !> precision on the polynomial, the state taken there, and the regime
+   !> switched (Leine's switch model: stick -> slip in the direction of the
+   !> holding force; slip -> stick if the holding force with the pins on the
+   !> belt is within mus N, else slip on in its direction).
+   subroutine twodof_exact(n, nz, nsub, h, kord, a, phi, coef, gs, nev, iv, v0, eta, mus, hold, nrow, z0, &
+                           z, state, nswitch, status)
+      integer, intent(in) :: n                    !< output samples (>= 2)
+      integer, intent(in) :: nz                   !< size of the augmented state (2 DoFs: 5)
+      integer, intent(in) :: nsub                 !< sub-steps per output interval (>= 1)
+      real(wp), intent(in) :: h                   !< sub-step (s), > 0
+      integer, intent(in) :: kord                 !< order of the exponential series (>= 1)
+      real(wp), intent(in) :: a(nz, nz, 3)        !< regime matrices
+      real(wp), intent(in) :: phi(nz, nz, 3)      !< expm(a h)
+      real(wp), intent(in) :: coef(0:kord, nz, 2, 3)  !< the event polynomials' rows
+      real(wp), intent(in) :: gs(nz, 4, 2, 3)     !< the event functions at s = h/4, h/2, 3h/4, h of a full step
+      integer, intent(in) :: nev(3)               !< event functions per regime (1 or 2)
+      integer, intent(in) :: iv                   !< index of the pins' velocity in z
+      real(wp), intent(in) :: v0                  !< belt velocity (m/s)
+      real(wp), intent(in) :: eta                 !< Leine's band (m/s), for the initial state
+      real(wp), intent(in) :: mus                 !< static coefficient of friction
+      real(wp), intent(in) :: hold(nz)            !< the holding force in stick: hold . z (z(iv) = v0)
+      real(wp), intent(in) :: nrow(nz)            !< the normal force: nrow . z
+      real(wp), intent(in) :: z0(nz)              !< initial state (last entry 1)
+      real(wp), intent(out) :: z(nz, n)           !< the state at the samples
+      integer, intent(out) :: state(n)            !< regime at the samples (1 stick, 2 slip +, 3 slip -)
+      integer, intent(out) :: nswitch             !< number of regime switches
+      integer, intent(out) :: status              !< st_ok, st_bad_argument or st_nonfinite_state
+      real(wp) :: s(nz), p(0:kord, 2), hl, sev, se, lo, hi, mid, sj(0:4), gj(0:4)
+      integer :: i, j, regime, e, jj, it, nsw_step
+      logical :: fresh
+
+      status = st_ok
+      nswitch = 0
+      z = 0.0_wp
+      state = 0
+      if (n < 2 .or. nsub < 1 .or. kord < 1 .or. .not. (h > 0.0_wp) .or. iv < 1 .or. iv > nz .or. &
+          .not. (eta >= 0.0_wp) .or. any(nev < 1) .or. any(nev > 2)) then
+         status = st_bad_argument
+         return
+      end if
+      s = z0
+      call classify(regime)
+      fresh = .true.
+      z(:, 1) = s
+      state(1) = regime
+      do i = 2, n
+         do j = 1, nsub
+            hl = h
+            nsw_step = 0
+            do while (hl > 0.0_wp)
+               sev = huge(1.0_wp)
+               do e = 1, nev(regime)
+                  gj(0) = dot_product(coef(0, :, e, regime), s)
+                  if (gj(0) < 0.0_wp .and. .not. fresh) then
+                     sev = 0.0_wp                  ! already across (rounding at a step's end)
+                     exit
+                  end if
+                  ! a full step: the samples from their precomputed rows; the polynomial only if a sign changes
+                  if (hl == h) then
+                     do jj = 1, 4
+                        gj(jj) = dot_product(gs(:, jj, e, regime), s)
+                     end do
+                     if (.not. any(gj(1:4) <= 0.0_wp)) cycle
+                  end if
+                  p(:, e) = matmul(coef(:, :, e, regime), s)
+                  sj(0) = 0.0_wp
+                  gj(0) = p(0, e)
+                  do jj = 1, 4
+                     sj(jj) = hl*jj/4.0_wp
+                     gj(jj) = poly(p(:, e), sj(jj))
+                     if (gj(jj) <= 0.0_wp .and. gj(jj - 1) > 0.0_wp) then
+                        lo = sj(jj - 1)
+                        hi = sj(jj)
+                        do it = 1, 200
+                           mid = 0.5_wp*(lo + hi)
+                           if (mid <= lo .or. mid >= hi) exit
+                           if (poly(p(:, e), mid) > 0.0_wp) then
+                              lo = mid
+                           else
+                              hi = mid
+                           end if
+                        end do
+                        se = hi
+                        if (se < sev) sev = se
+                        exit
+                     end if
+                  end do
+               end do
+               if (sev > hl) then                   ! no event in this (part-)step
+                  if (hl == h) then
+                     s = matmul(phi(:, :, regime), s)
+                  else
+                     s = series(regime, s, hl)
+                  end if
+                  if (regime == 1) s(iv) = v0
+                  hl = 0.0_wp
+                  fresh = .false.
+               else
+                  if (sev > 0.0_wp) s = series(regime, s, sev)
+                  hl = hl - sev
+                  call switch_regime()
+                  fresh = .true.
+                  nsw_step = nsw_step + 1
+                  if (nsw_step > 50) then           ! chattering: the switch model cannot decide
+                     status = st_nonfinite_state
+                     return
+                  end if
+               end if
+            end do
+         end do
+         if (.not. all(abs(s) < huge(1.0_wp))) then
+            status = st_nonfinite_state
+            return
+         end if
+         z(:, i) = s
+         state(i) = regime
+      end do
+
+   contains
+
+      pure real(wp) function poly(c, x) result(y)
+         real(wp), intent(in) :: c(0:kord), x
+         integer :: k
+         y = c(kord)
+         do k = kord - 1, 0, -1
+            y = y*x + c(k)
+         end do
+      end function poly
+
+      !> expm(A_r t) z by the exponential series in Horner form.
+      function series(r, zz, t) result(w)
+         integer, intent(in) :: r
+         real(wp), intent(in) :: zz(nz), t
+         real(wp) :: w(nz)
+         integer :: k
+         w = zz
+         do k = kord, 1, -1
+            w = zz + (t/k)*matmul(a(:, :, r), w)
+         end do
+      end function series
+
+      subroutine classify(reg)
+         integer, intent(out) :: reg
+         real(wp) :: ff
+         if (abs(v0 - s(iv)) > eta) then
+            if (v0 > s(iv)) then
+               reg = 2
+            else
+               reg = 3
+            end if
+            return
+         end if
+         s(iv) = v0
+         ff = dot_product(hold, s)
+         if (abs(ff) <= mus*dot_product(nrow, s)) then
+            reg = 1
+         else if (ff > 0.0_wp) then
+            reg = 2
+         else
+            reg = 3
+         end if
+      end subroutine classify
+
+      subroutine switch_regime()
+         integer :: old
+         real(wp) :: ff
+         old = regime
+         if (regime == 1) then
+            ff = dot_product(hold, s)
+            if (ff > 0.0_wp) then
+               regime = 2
+            else
+               regime = 3
+            end if
+         else
+            s(iv) = v0
+            call classify(regime)
+         end if
+         if (regime /= old) nswitch = nswitch + 1
+      end subroutine switch_regime
+
+   end subroutine twodof_exact
 
 end module twodof

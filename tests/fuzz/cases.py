@@ -490,7 +490,7 @@ OUTPUTS = {
     "run trc": {"listing.txt", "trc.csv", "lisitsyn_ellipse.png", "phase_planes.png", "apparent_mu.png",
                 "lienard_phase_planes.png", "characteristic.png", "nondim_mu.png"},
     "diagnose": {"diagnosis.json", "report.md", "trace.png", "characteristic.png", "residuals.png"},
-    "twodof": {"twodof.json", "angle.png", "forces.png", "spectrum.png"},
+    "twodof": {"twodof.json", "angle.png", "forces.png", "spectrum.png", "regimes.png"},
     "map": {"map.csv", "v_oc.csv", "map.png"},
     "figures": None,   # any *.png
 }
@@ -1177,6 +1177,12 @@ def gen_twodof(d: Drawer) -> dict:
         o["--rpm"] = d.choice(["0.1", "1", "0.01", "5"]) if d.boolean(0.5) else d.choice(FLOAT_ARG)
     if d.boolean(0.3):
         o["--belt"] = d.choice(FLOAT_ARG + ["0.00838", "0.999999", "1", "0.5", "0.0001", "0.1"])
+    if d.boolean(0.3):
+        o["--reading"] = d.choice(["default", "previous", "3dof", "slow-belt", "point", "nonsense", "",
+                                   "rod/cos2/+sincos/m1-table/r80/sec5", "rod/full/+sin/m1-r1/r90/sec4.3/3dof",
+                                   "rod+tip/sin2/-sincos/m1-r1/r90/sec5/3dof", "a/b/c/d/e/f"])
+    if d.boolean(0.3):
+        o["--members"] = d.choice(["1", "2", "3", "0", "-1", "65", "abc", "1.5"])
     if d.boolean(0.5):
         o["--json"] = True
     spec = {"kind": "twodof", "opts": o, "mut": [], "use_out": d.boolean(0.4)}

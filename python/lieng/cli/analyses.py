@@ -146,13 +146,12 @@ PRELOAD_MAX = 10_000.0
 
 def _twodof(args) -> int:
     from lieng.io.outputs import all_finite, check_outdir, dumps_json
-    from lieng.analysis.twodof import T_END_MAX, T_END_MIN, compare, write_outputs
+    from lieng.analysis.twodof import T_END_MAX, T_END_MIN, compare, parse_reading, write_outputs
 
     if args.outdir is not None:
         check_outdir(args.outdir, args.force)
     if args.belt is not None and args.rpm is not None:
-        raise LiengInputError("--belt and --rpm: give one of them (the belt velocity, or the disc speed at r2 = "
-                              "0.08 m)")
+        raise LiengInputError("--belt and --rpm: give one of them (the belt velocity, or the disc speed)")
     if args.rpm is None:
         args.rpm = 0.1
     for name in ("preload", "rpm", "t_end"):
@@ -164,12 +163,15 @@ def _twodof(args) -> int:
                               f"after the first {T_END_MIN / 2:g} s)")
     if args.preload > PRELOAD_MAX:
         raise LiengInputError(f"--preload {args.preload:g}: at most {PRELOAD_MAX:g} N (the paper's rig: 80 N)")
+    if not 1 <= args.members <= 64:
+        raise LiengInputError(f"--members {args.members}: from 1 to 64")
+    reading = parse_reading(args.reading)
     if args.belt is not None and not (0 < args.belt < 1):
         raise LiengInputError(f"--belt {args.belt}: the belt velocity must be between 0 and 1 m/s")
-    if args.belt is None and not 2 * math.pi * 0.08 * args.rpm / 60 < 1:
-        raise LiengInputError(f"--rpm {args.rpm:g}: the belt at r2 = 0.08 m must be slower than 1 m/s "
-                              f"(rpm < {60 / (2 * math.pi * 0.08):.4g})")
-    res = compare(preload=args.preload, rpm=args.rpm, t_end=args.t_end, belt=args.belt)
+    if args.belt is None and not reading.belt_speed(args.rpm) < 1:
+        raise LiengInputError(f"--rpm {args.rpm:g}: the belt of reading {reading.name} must be slower than 1 m/s")
+    res = compare(preload=args.preload, rpm=args.rpm, t_end=args.t_end, belt=args.belt, reading=reading,
+                  members=args.members)
     if not all_finite(res):
         raise LiengInputError(f"--preload {args.preload:g}, --rpm {args.rpm:g}: the simulation leaves the range of "
                               f"the model (a non-finite result); use values nearer the paper's (80 N, 0.1 rpm)")
@@ -182,17 +184,26 @@ def _twodof(args) -> int:
         print(dumps_json(res, indent=2))
     else:
         pap = res.get("paper")
-        print(f"dual-pin-on-disc, Fn = {args.preload:g} N, belt {res['belt_m_s']:.4g} m/s, {args.t_end:g} s; modal "
-              f"frequencies "
+        print(f"dual-pin-on-disc, reading {res['reading']['name']}, Fn = {args.preload:g} N, belt "
+              f"{res['belt_m_s']:.4g} m/s, {args.t_end:g} s, {res['members']} initial states; modal frequencies "
               + ", ".join(f"{f:.3f}" for f in res["modal_hz"]) + " Hz")
-        print(f"{'':24}{'peak (deg)':>12}{'fluct (deg)':>12}{'freq (Hz)':>11}{'N mean':>9}{'N std':>8}")
-        rows = []
+        print(f"{'':24}{'peak (deg)':>20}{'fluct (deg)':>20}{'freq (Hz)':>20}")
         if pap:
-            rows += [("paper, experiment", pap["experiment"]), ("paper, theory", pap["theory"])]
-        rows += [("2-DoF (this model)", res), ("1-DoF, constant N", res["onedof"]),
-                 ("1-DoF, C_N(t)", res["onedof_load_corrected"])]
-        for lab, r in rows:
-            nf = r.get("normal_force", {})
-            nm = f"{nf['mean']:9.2f}{nf['std']:8.3f}" if nf else ""
-            print(f"{lab:24}{r['peak_deg']:12.3f}{r['fluct_deg']:12.3f}{r['dominant_hz']:11.3f}{nm}")
+            for lab, r in (("paper, experiment", pap["experiment"]), ("paper, theory", pap["theory"])):
+                print(f"{lab:24}{r['peak_deg']:20.3f}{r['fluct_deg']:20.3f}{r['dominant_hz']:20.3f}")
+
+        def cell(st):
+            return f"{st['median']:.3f} [{st['min']:.2f},{st['max']:.2f}]" if st["n"] else "-"
+
+        print(f"{'2-DoF median [range]':24}{cell(res['peak_deg']):>20}{cell(res['fluct_deg']):>20}"
+              f"{cell(res['dominant_hz']):>20}")
+        for lab, r in (("1-DoF, constant N", res["onedof"]), ("1-DoF, C_N(t)", res["onedof_load_corrected"])):
+            print(f"{lab:24}{r['peak_deg']:20.3f}{r['fluct_deg']:20.3f}{r['dominant_hz']:20.3f}")
+        print("m2 lines (Hz, median): " + ", ".join(f"{ln['median']:.2f}" if ln["n"] else "-"
+                                                    for ln in res["m2_lines_hz"]["lines"])
+              + ("  (paper, Fig. 12: 0.68, 4.6, 5.26, 5.92, 6.58)" if args.preload == 80 else ""))
+        rg = res["regimes"]["regular"]
+        print(f"time in the regular regime: median {cell(rg)}; normal force std median "
+              f"{cell(res['normal_force']['std'])} N")
+        print("checks: " + ", ".join(f"{k} {'yes' if v else 'no'}" for k, v in res["checks"].items()))
     return 0

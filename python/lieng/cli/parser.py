@@ -176,10 +176,17 @@ def build_parser() -> argparse.ArgumentParser:
                                     "model) and the thesis's 1-DoF model of the same rig; print the paper's "
                                     "Table 3/4 quantities beside the paper's values.")
     td.add_argument("--preload", type=float, default=80.0, help="total normal preload of both pins (N)")
-    td.add_argument("--rpm", type=float, default=None, help="disc speed (rpm; belt at r2 = 0.08 m; default 0.1)")
+    td.add_argument("--rpm", type=float, default=None, help="disc speed (rpm; the belt at the reading's friction "
+                    "radius, x10 in sec. 5's reading; default 0.1)")
     td.add_argument("--t-end", type=float, default=600.0, help="simulated time (s, default 600 as the tests)")
     td.add_argument("--belt", type=float, help="belt velocity (m/s) instead of the disc at --rpm and r2 = 0.08 m "
                     "(e.g. 0.00838, sec. 5's value)")
+    td.add_argument("--reading", default="default",
+                    help="which reading of the paper's lost equations (default: the best of the search in "
+                         "twodof.md; named: default, previous, rod, point, cos2, no-normal, minus-normal, m1-table, "
+                         "r80, slow-belt, 3dof; or KINETIC/K3PROJ/NORMAL/m1-REF/rRADIUS/BELT[/3dof])")
+    td.add_argument("--members", type=int, default=8,
+                    help="initial states of the ensemble (1-64, default 8): every metric as median and range")
     td.add_argument("-o", "--outdir", help="write twodof.json and plots here")
     td.add_argument("--force", action="store_true", help=FORCE_HELP)
     td.add_argument("--json", action="store_true", help="print JSON")
