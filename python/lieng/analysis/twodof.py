@@ -789,6 +789,15 @@ def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, param
     return Comparison(out, simulations)
 
 
+def _envelope(t, y, width: float):
+    """(centres, min, max) of ``y`` over consecutive windows ``width`` long."""
+    dt = float(t[1] - t[0])
+    k = max(1, int(round(width / dt)))
+    n = (y.size // k) * k
+    yy = y[:n].reshape(-1, k)
+    return t[:n].reshape(-1, k).mean(axis=1), yy.min(axis=1), yy.max(axis=1)
+
+
 def write_outputs(res: Comparison, outdir) -> None:
     """Plots (angle, forces, spectrum: 2-DoF beside 1-DoF, the paper's values
     marked) and ``twodof.json`` into ``outdir``, from :func:`compare`'s result."""
@@ -811,7 +820,9 @@ def write_outputs(res: Comparison, outdir) -> None:
     two, one = sims["2-DoF"], sims["1-DoF"]
     fig, ax = plt.subplots(2, 1, figsize=(10, 7), dpi=110)
     for lab, s, kw in (("2-DoF", two, {"color": "C0"}), ("1-DoF (constant N)", one, {"color": "C1"})):
-        ax[0].plot(s.t, s.theta_deg, lw=0.5, label=lab, **kw)
+        # 600 s of a ~1 Hz oscillation is a solid band at this scale: its envelope (min and max over 2 s) is drawn
+        tc, lo, hi = _envelope(s.t, s.theta_deg, 2.0)
+        ax[0].fill_between(tc, lo, hi, alpha=0.45, lw=0, label=f"{lab}: range over 2 s", **kw)
         w = (s.t > s.t[-1] - 20)
         ax[1].plot(s.t[w], s.theta_deg[w], lw=0.8, label=lab, **kw)
     pap = res.get("paper")
@@ -819,18 +830,28 @@ def write_outputs(res: Comparison, outdir) -> None:
         ax[0].axhline(pap["experiment"]["peak_deg"], color="k", ls=":", lw=0.8, label="paper: measured peak")
         ax[0].axhline(pap["theory"]["peak_deg"], color="0.5", ls="--", lw=0.8, label="paper: its theory's peak")
     ax[0].set_ylabel("angle of Part 1 (deg)")
+    ax[0].set_title("the whole run: the angle's range over each 2 s", fontsize=9)
     ax[1].set_xlabel("time (s)")
     ax[1].set_ylabel("angle of Part 1 (deg)")
     ax[1].set_title("last 20 s", fontsize=9)
+    for a in ax:
+        a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     finish(fig, list(ax), cap, out / "angle.png")
-    fig, ax = plt.subplots(figsize=(10, 4.8), dpi=110)
-    w = (two.t > two.t[-1] - 20)
-    ax.plot(two.t[w], two.normal[w], label="2-DoF normal force N")
-    ax.plot(two.t[w], two.friction[w], label="2-DoF friction force")
-    ax.plot(one.t[w], one.friction[w], label="1-DoF friction force", alpha=0.7)
-    ax.set_xlabel("time (s)")
-    ax.set_ylabel("force on both pins (N)")
-    finish(fig, ax, cap, out / "forces.png")
+    fig, ax = plt.subplots(2, 1, figsize=(10, 6.4), dpi=110, sharex=True, gridspec_kw={"height_ratios": [1, 2]})
+    w = (two.t > two.t[-1] - 5)
+    ax[0].plot(two.t[w], two.normal[w], color="C0", label="2-DoF normal force N")
+    ax[0].axhline(res["preload_n"], color="0.5", ls="--", lw=0.8, label=f"preload {res['preload_n']:g} N "
+                  "(the 1-DoF model's constant N)")
+    ax[0].set_ylabel("normal force (N)")
+    ax[0].set_title("last 5 s: the normal force on its own scale (it follows x2 through k3)", fontsize=9)
+    ax[1].plot(two.t[w], two.friction[w], color="C3", lw=0.9, label="2-DoF friction force")
+    w1 = (one.t > one.t[-1] - 5)
+    ax[1].plot(one.t[w1], one.friction[w1], color="C1", lw=0.9, label="1-DoF friction force", alpha=0.8)
+    ax[1].set_xlabel("time (s)")
+    ax[1].set_ylabel("friction force on both pins (N)")
+    for a in ax:
+        a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    finish(fig, list(ax), cap, out / "forces.png")
     fig, ax = plt.subplots(figsize=(9, 4.8), dpi=110)
     for lab, s in (("2-DoF", two), ("1-DoF", one)):
         i0 = s.t.size // 2
@@ -838,6 +859,7 @@ def write_outputs(res: Comparison, outdir) -> None:
         f = np.fft.rfftfreq(th.size, float(s.t[1] - s.t[0]))
         a = 2 * np.abs(np.fft.rfft(th * np.hanning(th.size))) / np.hanning(th.size).sum()
         ax.semilogy(f[(f > 0) & (f < 5)], a[(f > 0) & (f < 5)] + 1e-9, lw=0.7, label=lab)
+    ax.legend(fontsize=8, loc="upper right")
     for fm in (0.7, 0.9, 1.1):
         ax.axvline(fm, color="k", ls=":", lw=0.8)
     ax.set_xlabel("frequency (Hz) — dotted: the paper's measured 0.7, 0.9, 1.1 Hz")
@@ -848,12 +870,14 @@ def write_outputs(res: Comparison, outdir) -> None:
         fig, ax = plt.subplots(2, 1, figsize=(10, 7), dpi=110, sharex=True,
                                gridspec_kw={"height_ratios": [2, max(1, len(ens)) / 4]})
         first = regimes(ens[0])
-        ax[0].plot(ens[0].t, ens[0].theta_deg, lw=0.4, color="C0")
+        tc, lo, hi = _envelope(ens[0].t, ens[0].theta_deg, 2.0)
+        ax[0].fill_between(tc, lo, hi, color="C0", alpha=0.6, lw=0)
         for t0, lab in zip(first["window_start_s"], first["labels"]):
             if lab:
                 ax[0].axvspan(t0, t0 + 5.0, color="C2", alpha=0.15, lw=0)
         ax[0].set_ylabel("angle of Part 1 (deg)")
-        ax[0].set_title("initial state 1: green = regular windows (5 s), white = bursts", fontsize=9)
+        ax[0].set_title("initial state 1, the angle's range over each 2 s: green = regular windows (5 s), white = "
+                        "bursts", fontsize=9)
         for i, sim in enumerate(ens):
             rg = first if i == 0 else regimes(sim)
             for t0, lab in zip(rg["window_start_s"], rg["labels"]):

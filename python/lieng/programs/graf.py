@@ -264,12 +264,12 @@ def trc_plots(result, outdir) -> list[Path]:
 
 
 def finish(fig, ax, caption: str, path) -> Path:
-    """Legend(s), a caption line under the plot, save (:func:`save`) and
-    close: the last steps of every analysis plot (diagnose, twodof).  ``ax``
+    """Legend(s) (where the caller placed none: upper right), a caption line
+    under the plot, save (:func:`save`) and close: the last steps of every analysis plot (diagnose, twodof).  ``ax``
     may be one axis or a sequence of axes.  Returns the path written."""
     for a in (ax if isinstance(ax, (list, tuple, np.ndarray)) else [ax]):
-        if a.get_legend_handles_labels()[0]:
-            a.legend(fontsize=8)
-    fig.text(0.01, 0.005, caption, fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
+        if a.get_legend_handles_labels()[0] and a.get_legend() is None:
+            a.legend(fontsize=8, loc="upper right", framealpha=0.85)
+    fig.text(0.01, 0.005, caption, fontsize=7, color="0.3", wrap=True)
+    fig.tight_layout(rect=(0, 0.03 if len(caption) < 150 else 0.05, 1, 1))
     return save(fig, path, description=caption)
