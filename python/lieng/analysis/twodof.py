@@ -674,22 +674,28 @@ def initial_states(n: int, v0: float, seed: int = 15) -> list:
 
 
 def ensemble(params: RigParams, reading: Reading | None = None, preload: float = 80.0, v0: float | None = None,
-             t_end: float = 600.0, members: int = 8, keep: list | None = None, seed: int = 15) -> dict:
+             t_end: float = 600.0, members: int = 8, seed: int = 15) -> dict:
     """Every steady-state metric over ``members`` initial states
     (:func:`initial_states`): median, min and max of each, the m2 lines, the
     regime fractions, and the definitions used."""
+    return _ensemble(params, reading, preload, v0, t_end, members, seed)[0]
+
+
+def _ensemble(params, reading, preload, v0, t_end, members, seed):
+    """:func:`ensemble`'s summary, its members' simulations and each member's
+    regimes (:func:`regimes`), which :func:`compare` keeps for the plots."""
     rd = reading or DEFAULT_READING
     v0 = rd.belt_speed() if v0 is None else float(v0)
-    rows = []
+    rows, sims = [], []
     for x0 in initial_states(members, v0, seed):
         sim = simulate(params, t_end=t_end, preload=preload, v0=v0, x0=x0, reading=rd)
         m = metrics(sim)
         rows.append({**m, "m2_lines": m2_lines(sim), "regimes": regimes(sim), "rise_and_fall": rise_and_fall(sim),
                      "nswitch": sim.nswitch})
-        if keep is not None:
-            keep.append(sim)
+        sims.append(sim)
     lines = np.array([r["m2_lines"] for r in rows])
-    return {
+    kn = matrices(params, rd)[3]
+    summary = {
         "members": members,
         "peak_deg": _stat([r["peak_deg"] for r in rows]),
         "fluct_deg": {**_stat([r["fluct_deg"] for r in rows]), "definition": FLUCT_DEFINITION},
@@ -699,8 +705,7 @@ def ensemble(params: RigParams, reading: Reading | None = None, preload: float =
                         "paper_fig12": list(PAPER_M2_LINES)},
         "normal_force": {"mean": _stat([r["normal_force"]["mean"] for r in rows]),
                          "std": _stat([r["normal_force"]["std"] for r in rows]),
-                         "corr_with_x2": 1.0 if matrices(params, rd)[3] > 0 else (
-                             -1.0 if matrices(params, rd)[3] < 0 else 0.0)},
+                         "corr_with_x2": float(np.sign(kn))},
         "regimes": {"regular": _stat([r["regimes"]["regular"] for r in rows]),
                     "burst": _stat([r["regimes"]["burst"] for r in rows]),
                     "definition": REGIME_DEFINITION},
@@ -709,6 +714,7 @@ def ensemble(params: RigParams, reading: Reading | None = None, preload: float =
                           "definition": " ".join(rise_and_fall.__doc__.split())},
         "switches": _stat([r["nswitch"] for r in rows]),
     }
+    return summary, sims, [r["regimes"] for r in rows]
 
 
 def checks(res: dict) -> dict:
@@ -742,9 +748,10 @@ class Comparison(dict):
         first ensemble member, and every member) and :func:`onedof`'s (absent when ``with_onedof`` is False).
     """
 
-    def __init__(self, summary: dict, simulations: dict):
+    def __init__(self, summary: dict, simulations: dict, regimes: list | None = None):
         super().__init__(summary)
         self.simulations = simulations
+        self.regimes = regimes or []
 
 
 def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, params: RigParams | None = None,
@@ -765,8 +772,7 @@ def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, param
         muk = float(np.interp(preload, [80.0, 100.0], [PAPER[80.0]["muk"], PAPER[100.0]["muk"]]))
         p = replace(p, muk=muk)
     v0 = rd.belt_speed(rpm) if belt is None else float(belt)
-    sims: list = []
-    ens = ensemble(p, rd, preload=preload, v0=v0, t_end=t_end, members=members, keep=sims, seed=seed)
+    ens, sims, member_regimes = _ensemble(p, rd, preload, v0, t_end, members, seed)
     s2 = sims[0]
     k2, fk2 = identify_k2(p, reading=rd)
     out = {"reading": rd.to_json(), "modal_hz": [float(f) for f in modal_frequencies(p, rd)], **ens,
@@ -786,7 +792,7 @@ def compare(preload: float = 80.0, rpm: float = 0.1, t_end: float = 600.0, param
         sc = onedof(p, load_correction=True, t_end=t_end, preload=preload, v0=v0, reading=rd)
         out.update({"onedof": metrics(s1), "onedof_load_corrected": metrics(sc)})
         simulations.update({"1-DoF": s1, "1-DoF C_N": sc})
-    return Comparison(out, simulations)
+    return Comparison(out, simulations, member_regimes)
 
 
 def _envelope(t, y, width: float):
@@ -869,7 +875,8 @@ def write_outputs(res: Comparison, outdir) -> None:
     if ens:
         fig, ax = plt.subplots(2, 1, figsize=(10, 7), dpi=110, sharex=True,
                                gridspec_kw={"height_ratios": [2, max(1, len(ens)) / 4]})
-        first = regimes(ens[0])
+        member_regimes = res.regimes or [regimes(sim) for sim in ens]
+        first = member_regimes[0]
         tc, lo, hi = _envelope(ens[0].t, ens[0].theta_deg, 2.0)
         ax[0].fill_between(tc, lo, hi, color="C0", alpha=0.6, lw=0)
         for t0, lab in zip(first["window_start_s"], first["labels"]):
@@ -878,8 +885,7 @@ def write_outputs(res: Comparison, outdir) -> None:
         ax[0].set_ylabel("angle of Part 1 (deg)")
         ax[0].set_title("initial state 1, the angle's range over each 2 s: green = regular windows (5 s), white = "
                         "bursts", fontsize=9)
-        for i, sim in enumerate(ens):
-            rg = first if i == 0 else regimes(sim)
+        for i, rg in enumerate(member_regimes):
             for t0, lab in zip(rg["window_start_s"], rg["labels"]):
                 ax[1].broken_barh([(t0, 5.0)], (i + 0.1, 0.8), color="C2" if lab else "C3")
         ax[1].set_yticks(np.arange(len(ens)) + 0.5, [str(i + 1) for i in range(len(ens))])
