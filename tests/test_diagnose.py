@@ -467,6 +467,31 @@ def test_spikes_come_out_before_a_jittered_record_is_resampled():
     assert np.max(np.abs(rec.x - np.interp(rec.t, t, clean))) < 0.02
 
 
+def test_spikes_of_two_and_three_samples_come_out_and_slips_stay():
+    """A spike a sensor's filter spreads over two or three samples (found
+    on an independent generator's force record: a pair of samples at twice
+    the drop above a peak stayed, became that cycle's peak and cost the
+    extension's gain) is replaced by the line between its neighbours like
+    an isolated one; a slip (a drop of the whole drop within one sample,
+    the samples on either side not agreeing) and a stick-slip sawtooth stay
+    exactly as they are."""
+    from lieng.diagnose.read import despike
+
+    g = np.random.default_rng(3)
+    t = np.arange(6000) * 1e-3
+    saw = 1.0 * ((3.0 * t) % 1.0)                          # rises, then drops in one sample: slips
+    clean = saw + 0.002 * g.standard_normal(t.size)
+    x = clean.copy()
+    starts = [500, 1500, 2500, 3500, 4500]
+    for i, (j, L) in enumerate(zip(starts, (1, 2, 3, 2, 3))):
+        x[j:j + L] += (-1) ** i * g.uniform(0.5, 2.0, L)
+    y, n = despike(x)
+    assert n == 11
+    assert np.max(np.abs(y - clean)) < 0.02
+    y0, n0 = despike(clean)
+    assert n0 == 0 and np.array_equal(y0, clean)
+
+
 def test_a_second_mode_ringing_after_each_arrest_is_read():
     """A rig's second mode rings after each arrest (the 1-DoF slider is then
     in stick): a decaying oscillation at 6 fn added after every trough of an

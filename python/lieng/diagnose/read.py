@@ -16,8 +16,8 @@ units in the header in brackets or the defaults below):
 
 Without a drive column the constant ``v0`` is used; a drive may be signed
 and may reverse (reciprocating rigs: see :mod:`.segment`).  Uneven sampling
-and gaps are resampled onto the median interval, isolated spikes replaced by
-their neighbours' mean, and a mains-hum line (50 or 60 Hz and harmonics)
+and gaps are resampled onto the median interval, spikes (isolated samples or
+runs of up to three) replaced by the line between their neighbours, and a mains-hum line (50 or 60 Hz and harmonics)
 that stands far above the spectrum around it removed; each is said in
 ``Record.notes``.  A thesis-style TRC readings deck is accepted as well.
 """
@@ -324,34 +324,52 @@ def noise_level(x) -> float:
     return float(np.median(np.abs(d2 - np.median(d2))) / 0.6745 / math.sqrt(6.0))
 
 
-def despike(x, k: float = 8.0):
-    """Isolated spikes: a sample that stands out from both neighbours in the
-    same direction by more than k noise levels while the neighbours agree
-    with each other.  Returns the cleaned copy and the count replaced."""
+#: the longest run of outlying samples :func:`despike` replaces (a spike that a
+#: sensor's filter or a coarse grid spreads over neighbouring samples)
+SPIKE_RUN = 3
+
+
+def despike(x, k: float = 8.0, run: int = SPIKE_RUN):
+    """Spikes: a run of one to ``run`` samples that stands out from the line
+    joining the samples on either side of it, all in the same direction, by
+    more than k noise levels, while those two samples agree with each other
+    (they differ by less than half the smallest excursion: a slip, a step,
+    is not a spike).  The run is replaced by that line.  Returns the cleaned
+    copy and the count of samples replaced."""
     s = noise_level(x)
-    if x.size < 5 or s <= 0:
+    if x.size < run + 4 or s <= 0:
         return x, 0
     y = x.copy()
-    total = 0
+    changed = np.zeros(y.size, bool)
     for _ in range(3):
-        a = y[1:-1] - y[:-2]
-        b = y[1:-1] - y[2:]
-        nb = np.abs(y[2:] - y[:-2])
-        hit = (np.sign(a) == np.sign(b)) & (np.minimum(np.abs(a), np.abs(b)) > k * s) & \
-              (nb < 0.5 * np.minimum(np.abs(a), np.abs(b)))
-        idx = np.flatnonzero(hit) + 1
-        if not idx.size:
+        found = 0
+        for L in range(run, 0, -1):             # the longest first: a run is not taken apart
+            n = y.size - L - 1                  # runs y[i+1 .. i+L] between y[i] and y[i+L+1]
+            left, right = y[:n], y[L + 1:L + 1 + n]
+            exc = np.empty((L, n))
+            for j in range(L):
+                exc[j] = y[1 + j:1 + j + n] - (left + (right - left) * (j + 1) / (L + 1))
+            lo = np.min(np.abs(exc), axis=0)
+            same = np.all(exc > 0, axis=0) | np.all(exc < 0, axis=0)
+            hit = np.flatnonzero(same & (lo > k * s) & (np.abs(right - left) < 0.5 * lo))
+            for i in hit:
+                if not np.all(np.abs(y[i + 1:i + L + 1] - (y[i] + (y[i + L + 1] - y[i]) * np.arange(1, L + 1)
+                                                           / (L + 1))) > k * s):
+                    continue                    # changed by an overlapping run already replaced
+                y[i + 1:i + L + 1] = y[i] + (y[i + L + 1] - y[i]) * np.arange(1, L + 1) / (L + 1)
+                changed[i + 1:i + L + 1] = True
+                found += L
+        if not found:
             break
-        y[idx] = 0.5 * (y[idx - 1] + y[idx + 1])
-        total += idx.size
-    return y, total
+    return y, int(np.count_nonzero(changed))
 
 
 def _despiked(x, name: str, notes: list, when: str = ""):
     """:func:`despike` with a note of the spikes replaced in channel ``name``."""
     y, nsp = despike(x)
     if nsp:
-        notes.append(f"{nsp} isolated spikes in {name} replaced by their neighbours' mean{when}")
+        notes.append(f"spikes in {name}: {nsp} samples (isolated or in runs of up to {SPIKE_RUN}) replaced by the line "
+                     f"between their neighbours{when}")
     return y
 
 
