@@ -13,6 +13,7 @@ record.
 
     python tests/benchmarks/bench_diagnose.py [--seeds 8] [--only lugre,synth] [--cases none,twin_branch]
                                               [--json out.json] [--fn-uncertainty 0.01]
+                                              [--nuisances spikes,hum]
 """
 
 from __future__ import annotations
@@ -181,6 +182,8 @@ def main(argv=None):
     ap.add_argument("--seeds", type=int, default=8)
     ap.add_argument("--only", default="")
     ap.add_argument("--cases", default="", help="comma-separated subset of the cases (default: all six)")
+    ap.add_argument("--nuisances", default="", help="comma-separated subset of the nuisances: only the seeds that "
+                    "carry them (seed s carries the nuisance s mod 7 in the order " + ", ".join(NUISANCES) + ")")
     ap.add_argument("--json")
     ap.add_argument("--fn-uncertainty", type=float, default=None,
                     help="pass it with --fn on the records whose given fn is within it of the true fn (what a "
@@ -194,6 +197,8 @@ def main(argv=None):
             for case in cases:
                 for seed in range(a.seeds):
                     nu = NUISANCES[seed % len(NUISANCES)]
+                    if a.nuisances and nu not in a.nuisances.split(","):
+                        continue
                     d = Path(tmp) / f"{gname}_{case}_{seed}"
                     d.mkdir()
                     try:
