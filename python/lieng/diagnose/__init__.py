@@ -175,6 +175,7 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
     named = [k for k in SLIDING if rows[k]["named"]]
     effects = [_finite({"effect": k, "effect_size": rows[k]["effect_size"], "interval_95": rows[k].get("interval"),
                         "p": rows[k]["p"], "z": rows[k]["z"], "gain": 0.0, "gain_interval_90": [0.0, 0.0],
+                        "held_out_error_baseline": None, "held_out_error_extended": None,
                         "extension": "none (no stick-slip to simulate)"}) for k in named]
     reason = (f"{c_n} stick-slip cycles found: the record does not show stick-slip (no drop faster than the rise "
               f"before it)")
@@ -406,6 +407,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         fitted[k] = (ext, g, imp)
         effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
                                 "p": r["p"], "z": r["z"], "gain": g["gain"], "gain_interval_90": g["interval"],
+                                "held_out_error_baseline": g["e0"], "held_out_error_extended": g["e1"],
                                 "training_improvement": imp,
                                 "extension": "fitted" if ext is not base else
                                 ("none better than the baseline on the training part" if cands else
