@@ -334,7 +334,11 @@ def despike(x, k: float = 8.0, run: int = SPIKE_RUN):
     joining the samples on either side of it, all in the same direction, by
     more than k noise levels, while those two samples agree with each other
     (they differ by less than half the smallest excursion: a slip, a step,
-    is not a spike).  The run is replaced by that line.  Returns the cleaned
+    is not a spike); a run of two or more must also stand out by twice the
+    step from each of those samples to the one beyond it (a narrow trough
+    that the signal enters and leaves as steeply as it is deep, a slip's
+    overshoot or a second mode ringing, is not a spike).  The run is
+    replaced by that line.  Returns the cleaned
     copy and the count of samples replaced."""
     s = noise_level(x)
     if x.size < run + 4 or s <= 0:
@@ -351,7 +355,15 @@ def despike(x, k: float = 8.0, run: int = SPIKE_RUN):
                 exc[j] = y[1 + j:1 + j + n] - (left + (right - left) * (j + 1) / (L + 1))
             lo = np.min(np.abs(exc), axis=0)
             same = np.all(exc > 0, axis=0) | np.all(exc < 0, axis=0)
-            hit = np.flatnonzero(same & (lo > k * s) & (np.abs(right - left) < 0.5 * lo))
+            ok = same & (lo > k * s) & (np.abs(right - left) < 0.5 * lo)
+            if L > 1:
+                # a run must also stand out from how fast the signal moves beside it: a narrow trough
+                # (a slip's overshoot, a second mode ringing) is entered and left as steeply as it is deep
+                d = np.abs(np.diff(y))
+                before = np.r_[np.inf, d[:n - 1]]               # |y[i] - y[i-1]|
+                after = np.r_[d[L + 1:L + 1 + n - 1], np.inf]    # |y[i+L+2] - y[i+L+1]|
+                ok &= lo > 2.0 * np.maximum(before, after)
+            hit = np.flatnonzero(ok)
             for i in hit:
                 if not np.all(np.abs(y[i + 1:i + L + 1] - (y[i] + (y[i + L + 1] - y[i]) * np.arange(1, L + 1)
                                                            / (L + 1))) > k * s):
