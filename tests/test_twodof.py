@@ -292,3 +292,29 @@ def test_rise_and_fall_counts_the_interior_maxima_of_the_friction():
         r = T.rise_and_fall(SimpleNamespace(t=t, theta_deg=theta, friction=fr))
         assert r["one"] == pytest.approx(frac, abs=0.05)
         assert r["maxima_per_cycle"] == nmax
+
+
+def test_dominant_frequency_is_part_1s_angle_in_the_steady_state():
+    """The paper's "dominant frequency" (Tables 3 and 4) is the largest FFT
+    line of Part 1's angular displacement in the steady state: sec. 4.3,
+    "FFT displacement of Part 1 shows one dominant frequency of 0.68 Hz with
+    very high magnitude" (Fig. 12(a); m2's spectrum, Fig. 12(b), has other
+    lines), and sec. 5, "FFT analysis of ... theoretical displacement at the
+    steady-state stage ... main frequency at 0.64 Hz" (Fig. 16(b)).  So not
+    the pins' displacement, the normal or the friction force (whose largest
+    lines here are at 5 Hz), and not the transient (a larger 0.3 Hz swing in
+    the first half)."""
+    from types import SimpleNamespace
+
+    t = np.arange(0, 600, 1e-3)
+    steady = t >= 300
+    ph = (t * 0.68) % 1.0
+    theta = 8 + 0.8 * ph + np.where(steady, 0.0, 3 * np.sin(2 * np.pi * 0.3 * t))
+    fast = np.sin(2 * np.pi * 5.0 * t)
+    sim = SimpleNamespace(t=t, theta_deg=theta, x2=1e-3 * ph + 5e-3 * fast, normal=80 + 5 * fast,
+                          friction=15 + 5 * fast)
+    m = T.metrics(sim)
+    assert m["dominant_hz"] == pytest.approx(0.68, abs=0.004)
+    for other in (sim.x2, sim.normal, sim.friction):
+        assert T._dominant(other[steady], 1e-3) == pytest.approx(5.0, abs=0.004)
+    assert T._dominant(theta, 1e-3) == pytest.approx(0.3, abs=0.004)       # the whole run would read the transient
