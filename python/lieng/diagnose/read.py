@@ -17,8 +17,9 @@ units in the header in brackets or the defaults below):
 Without a drive column the constant ``v0`` is used; a drive may be signed
 and may reverse (reciprocating rigs: see :mod:`.segment`).  Uneven sampling
 and gaps are resampled onto the median interval, spikes (isolated samples or
-runs of up to three) replaced by the line between their neighbours, and a mains-hum line (50 or 60 Hz and harmonics)
-that stands far above the spectrum around it removed; each is said in
+runs of up to three) replaced by the line between their neighbours, and a
+mains-hum line (50 or 60 Hz and harmonics) that stands far above the spectrum
+around it removed; each is said in
 ``Record.notes``.  A thesis-style TRC readings deck is accepted as well.
 """
 
@@ -338,8 +339,8 @@ def despike(x, k: float = 8.0, run: int = SPIKE_RUN):
     step from each of those samples to the one beyond it (a narrow trough
     that the signal enters and leaves as steeply as it is deep, a slip's
     overshoot or a second mode ringing, is not a spike).  The run is
-    replaced by that line.  Returns the cleaned
-    copy and the count of samples replaced."""
+    replaced by that line.  Returns the cleaned copy and the count of
+    samples replaced."""
     s = noise_level(x)
     if x.size < run + 4 or s <= 0:
         return x, 0
