@@ -539,3 +539,29 @@ def test_a_line_beside_the_mains_frequency_is_the_records_own():
     hum = 0.04 * np.sin(2 * np.pi * 50.0 * t + 0.3)        # 2 % of the drop
     lines = _hum_lines(saw + hum, dt)
     assert len(lines) == 1 and abs(lines[0][0] - 50.0) < 0.05 and abs(lines[0][1] - 0.04) < 0.012
+
+
+def test_a_columns_unit_decides_between_the_roles_its_name_allows(tmp_path):
+    """A name's words can point two ways; the unit says which: "Load point
+    displacement (um)" is the drive's position (rock mechanics), not a
+    normal load; "Normal load (N)" stays the normal force; a unit of none of
+    the dimensions still names the column."""
+    from lieng.diagnose import read_record
+    from lieng.diagnose.read import _role
+    from lieng.errors import LiengInputError
+
+    assert _role("Load point displacement", "um") == "position"
+    assert _role("Normal load", "N") == "N"
+    assert _role("Friction", "mN") == "F"
+    assert _role("Position", "mm") == "position"
+    t = np.arange(0.0, 20.0, 0.005)
+    saw = (t * 2.0) % 1.0                               # a sawtooth of the friction, 2 Hz
+    p = tmp_path / "lp.csv"
+    _write(p, {"Time (s)": t, "Load point displacement (um)": 1000.0 * t, "Friction force (N)": 1.0 + 0.2 * saw})
+    rec = read_record(p, stiffness=1000.0)
+    assert rec.drive_recorded and abs(float(np.median(rec.vd)) - 1.0) < 1e-3      # mm/s from um over s
+    assert rec.y is None
+    p2 = tmp_path / "bad.csv"
+    _write(p2, {"Time (s)": t, "Friction (mm)": saw, "Position (mm)": t})
+    with pytest.raises(LiengInputError, match="Friction"):
+        read_record(p2, stiffness=1000.0)

@@ -118,16 +118,27 @@ _WORDS = (("N", ("normal", "load")), ("F", ("friction", "tangential", "lateral",
           ("x", ("displacement", "extension")))
 
 
-def _role(name: str):
+#: the roles a column of a given unit's dimension can have
+_FITS = (("position", _LENGTH), ("x", _LENGTH), ("y", _LENGTH), ("v0", _VELOCITY), ("t", _TIME), ("F", _FORCE),
+         ("N", _FORCE))
+
+
+def _role(name: str, unit: str = ""):
+    """The column's role from its name; a unit that is a length, velocity,
+    time or force rules out the roles of another dimension ("Load point
+    displacement (um)" is the drive's position, not a normal load)."""
     key = name.strip().lower().replace(" ", "_").replace("-", "_")
-    for role, alts in _NAMES.items():
-        if key in alts:
-            return role
+    u = unit.strip().lower().replace(" ", "")
+    fits = {r for r, table in _FITS if u in table} if u else None
+    if fits is not None and not fits:
+        fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
     words = set(re.split(r"[^a-z0-9]+", key))
-    for role, alts in _WORDS:
-        if words & set(alts):
-            return role
-    return None
+    if {"load", "point"} <= words or "lp" in words:
+        words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
+    named = [role for role, alts in _NAMES.items() if key in alts] + \
+            [role for role, alts in _WORDS if words & set(alts)]
+    # the first role the unit allows; else the first by name (whose unit check then names the column)
+    return next((r for r in named if fits is None or r in fits), named[0] if named else None)
 
 
 def _scale(path, name, unit, table, what):
@@ -174,12 +185,12 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
                      missing="drop")
     cols, units = {}, {}
     for name, unit in zip(tab.names, tab.units):
-        role = _role(name)
+        role = _role(name, unit)
         if role is None and not unit and "_" in name:
             # "time_s", "force_mN": the unit as the name's last part
             stem, suffix = name.rsplit("_", 1)
             if suffix and any(suffix.lower() in units_of for units_of in (_LENGTH, _VELOCITY, _TIME, _FORCE)):
-                role, unit = _role(stem), suffix
+                role, unit = _role(stem, suffix), suffix
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
     if "t" not in cols:
