@@ -10,7 +10,9 @@ frequency.
   turned so that it rises at the drive velocity while the slider sticks.
 * **Cycles.**  Alternating extrema of the lightly smoothed x with a
   hysteresis of a quarter of the typical swing (no natural frequency
-  needed): a drop is a slip when it is faster than the rise before it.
+  needed): a drop is a slip when it is faster than the rise before it.  A
+  slip ends at its arrest (:func:`arrest`: the first local minimum most of
+  the way down), not at the lowest wiggle of a hold that follows it.
 * **Natural frequency.**  From x inside the slips: between the peak and
   the trough the slider swings a half natural period about the friction
   level (exactly, for any level, also one that steps where the sliding
@@ -260,6 +262,31 @@ def _zigzag_on(x, cand, h):
     return np.asarray(idx, int), np.asarray(kind, int)
 
 
+#: the slip has ended (arrested) at the first local minimum of x after the peak
+#: that lies this fraction of the way down from the peak to the lowest x
+ARREST_DEPTH = 0.8
+
+
+def arrest(xl, pi_: int, ti_: int, tol: float) -> int:
+    """Where the slip from the peak ``pi_`` ends: the first local minimum of
+    the lightly smoothed ``xl`` after it, at least ARREST_DEPTH of the way
+    down to the lowest point ``ti_``, that x does not fall below by more
+    than ``tol`` (the noise) within half the time since the peak.  In a
+    plain slip that is the lowest point; before a hold (a stop of the drive)
+    it is the arrest, not the lowest wiggle of the noise somewhere in the
+    hold, so that the slip's samples stay in the slip and the stick through
+    the hold counts from its start."""
+    if ti_ - pi_ < 3:
+        return ti_
+    seg = xl[pi_:ti_ + 1]
+    deep = seg <= seg[0] - ARREST_DEPTH * (seg[0] - seg[-1])
+    up = np.r_[seg[1:] >= seg[:-1], True]
+    for j in np.flatnonzero(deep & up):
+        if seg[j] <= float(np.min(seg[j:j + max(3, j // 2) + 1])) + tol:
+            return pi_ + int(j)
+    return ti_
+
+
 def find_cycles(p: Prepared, fn: float | None) -> Cycles:
     """The stick-slip cycles of every stroke (see the module docstring)."""
     dt = p.dt
@@ -292,6 +319,7 @@ def find_cycles(p: Prepared, fn: float | None) -> Cycles:
             if kd[m] != 1 or kd[m + 1] != -1:
                 continue
             pi_, ti_ = ix[m], ix[m + 1]
+            ti_ = arrest(xl, pi_, ti_, 3 * noise)
             fall = ti_ - pi_
             rise = pi_ - ix[m - 1] if m >= 1 else None
             if rise is not None and not fall < rise:
