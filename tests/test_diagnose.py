@@ -2,6 +2,7 @@
 an implementation that shares no code with the diagnosis), and bad input."""
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -565,3 +566,40 @@ def test_a_columns_unit_decides_between_the_roles_its_name_allows(tmp_path):
     _write(p2, {"Time (s)": t, "Friction (mm)": saw, "Position (mm)": t})
     with pytest.raises(LiengInputError, match="Friction"):
         read_record(p2, stiffness=1000.0)
+
+
+def test_a_slip_ends_at_its_arrest_not_in_the_hold_after_it():
+    """A stick-slip trace whose drive stops after one slip (a hold of 20
+    stick times, noisy flat x): that slip's trough is its arrest, the slip
+    samples of the reverse construction stay in the slips, and the stick
+    through the hold counts from the arrest (geometry of the trace, plain
+    NumPy)."""
+    from lieng.diagnose.baseline import slip_samples
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    fn, dt, v0 = 10.0, 0.002, 1.0
+    wn = 2 * math.pi * fn
+    g = np.random.default_rng(3)
+    t_list, x_list, v_list = [], [], []
+    t, x = 0.0, 0.0
+    hold_after = 5
+    for k in range(12):
+        n_st = int(0.5 / dt)                                  # stick: x rises from -0.25 to 0.25 at v0
+        for i in range(n_st):
+            t_list.append(t); x_list.append(-0.25 + v0 * i * dt); v_list.append(v0); t += dt
+        n_sl = int(0.5 / fn / dt)                             # slip: half a natural period, 0.25 -> -0.25
+        for i in range(n_sl):
+            t_list.append(t); x_list.append(0.25 * math.cos(wn * i * dt)); v_list.append(v0); t += dt
+        if k == hold_after:                                   # hold: the drive stops, x stays
+            for i in range(int(10.0 / dt)):
+                t_list.append(t); x_list.append(-0.25); v_list.append(0.0); t += dt
+    x = np.array(x_list) + 0.002 * g.standard_normal(len(x_list))
+    from lieng.diagnose import record_from_arrays
+
+    pr = prepare(record_from_arrays(np.array(t_list), x, np.array(v_list)))
+    c = find_cycles(pr, fn)
+    hold_t0 = (hold_after + 1) * (0.5 + 0.5 / fn)            # when the hold starts
+    k = int(np.argmin(np.abs(pr.t[c.peak_i] - (hold_t0 - 0.5 / fn))))
+    assert abs(pr.t[c.trough_i[k]] - hold_t0) < 0.1 / fn      # the arrest, not somewhere in the 10 s hold
+    idx, _, _ = slip_samples(c, pr.x.size)
+    assert not np.any((pr.t[idx] > hold_t0 + 0.5 / fn) & (pr.t[idx] < hold_t0 + 10.0))
