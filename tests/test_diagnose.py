@@ -603,3 +603,44 @@ def test_a_slip_ends_at_its_arrest_not_in_the_hold_after_it():
     assert abs(pr.t[c.trough_i[k]] - hold_t0) < 0.1 / fn      # the arrest, not somewhere in the 10 s hold
     idx, _, _ = slip_samples(c, pr.x.size)
     assert not np.any((pr.t[idx] > hold_t0 + 0.5 / fn) & (pr.t[idx] < hold_t0 + 10.0))
+
+
+def test_the_stick_through_a_reversal_counts_from_the_last_arrest():
+    """A reciprocating trace (stick-slip forward, a 1 s dwell, stick-slip
+    backward): the stick that ends in the backward stroke's first peak lasts
+    from the forward stroke's last arrest through the dwell (the contact
+    rests while the spring unloads and loads the other way), so a static
+    friction that ages over the dwell is seen (geometry of the trace)."""
+    from lieng.diagnose import record_from_arrays
+    from lieng.diagnose.evidence import stick_times
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    fn, dt, v0 = 10.0, 0.002, 1.0
+    wn = 2 * math.pi * fn
+    T, X, V = [], [], []
+    t = 0.0
+
+    def add(xs, v):
+        nonlocal t
+        for xv in xs:
+            T.append(t); X.append(xv); V.append(v); t += dt
+
+    # the friction swings between 0.8 (peak) and 0.3 (trough) in the drive's direction
+    for direction in (1, -1):
+        for k in range(6):
+            lo = -0.3 if (direction == -1 and k == 0) else 0.3   # backward: from the forward stroke's last arrest
+            n_st = int(round((0.8 - lo) / v0 / dt))
+            add([direction * (lo + v0 * i * dt) for i in range(n_st)], direction * v0)
+            add([direction * (0.55 + 0.25 * math.cos(wn * i * dt)) for i in range(int(0.5 / fn / dt))],
+                direction * v0)
+        if direction == 1:
+            add([0.3] * int(1.0 / dt), 0.0)                      # the dwell at the reversal
+    x = np.array(X) + 0.001 * np.random.default_rng(0).standard_normal(len(X))
+    pr = prepare(record_from_arrays(np.array(T), x, np.array(V)))
+    c = find_cycles(pr, fn)
+    k, ts, pk = stick_times(pr, c)
+    across = np.flatnonzero(c.stroke[k + 1] != c.stroke[k])
+    assert across.size == 1
+    j = k[across[0]]
+    assert abs(ts[across[0]] - (pr.t[c.peak_i[j + 1]] - pr.t[c.trough_i[j]])) < 1e-12
+    assert ts[across[0]] > 1.0 + np.median(np.delete(ts, across))     # the dwell and the longer reload

@@ -242,9 +242,13 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
 
 def stick_times(pr: Prepared, c: Cycles):
     """Each stick's duration (a slip's trough to the next peak of the same
-    stroke, also across a hold in which x relaxes) and the peak it ends in:
-    (index of the slip before, seconds, peak x)."""
-    k = np.flatnonzero(c.stroke[1:] == c.stroke[:-1]) if c.n > 1 else np.array([], int)
+    stroke, also across a hold in which x relaxes; and, on a reciprocating
+    rig, the last arrest of a stroke to the first peak of the next: the
+    contact rests through the reversal and its dwell while the spring
+    unloads and loads again the other way) and the peak it ends in: (index
+    of the slip before, seconds, peak x)."""
+    k = np.flatnonzero((c.stroke[1:] == c.stroke[:-1]) | (c.stroke[1:] == c.stroke[:-1] + 1)) if c.n > 1 \
+        else np.array([], int)
     ts = pr.t[c.peak_i[k + 1]] - pr.t[c.trough_i[k]]
     ok = ts > 0
     return k[ok], ts[ok], pr.x[c.peak_i[k[ok] + 1]]
