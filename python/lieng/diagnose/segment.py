@@ -265,6 +265,8 @@ def _zigzag_on(x, cand, h):
 #: the slip has ended (arrested) at the first local minimum of x after the peak
 #: that lies this fraction of the way down from the peak to the lowest x
 ARREST_DEPTH = 0.8
+#: local minima tried before the lowest point is taken (a hold in which x keeps relaxing)
+ARREST_TRIES = 64
 
 
 def arrest(xl, pi_: int, ti_: int, tol: float) -> int:
@@ -281,7 +283,8 @@ def arrest(xl, pi_: int, ti_: int, tol: float) -> int:
     seg = xl[pi_:ti_ + 1]
     deep = seg <= seg[0] - ARREST_DEPTH * (seg[0] - seg[-1])
     up = np.r_[seg[1:] >= seg[:-1], True]
-    for j in np.flatnonzero(deep & up):
+    # at most ARREST_TRIES local minima are tried (each looks at most the fall's length ahead): linear time
+    for j in np.flatnonzero(deep & up)[:ARREST_TRIES]:
         if seg[j] <= float(np.min(seg[j:j + max(3, j // 2) + 1])) + tol:
             return pi_ + int(j)
     return ti_
