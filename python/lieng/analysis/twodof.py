@@ -597,16 +597,17 @@ def m2_lines(sim: Simulation, steady_from: float = 0.5) -> list[float]:
     return [low] + top
 
 
-def regimes(sim: Simulation, steady_from: float = 0.5, window: float = 5.0) -> dict:
+def regimes(sim: Simulation, steady_from: float = 0.5, window: float = 5.0, f_dom: float | None = None) -> dict:
     """The fraction of the steady state in each regime (:data:`REGIME_DEFINITION`)
-    and the per-window labels (1 regular, 0 burst) with the windows' start times."""
+    and the per-window labels (1 regular, 0 burst) with the windows' start times.
+    ``f_dom``: the run's dominant frequency when already known (:func:`metrics`)."""
     dt = float(sim.t[1] - sim.t[0])
     dec = max(1, int(round(0.01 / dt)))
     i0 = int(steady_from * sim.t.size)
     th = sim.theta_deg[i0::dec]
     t = sim.t[i0::dec]
     dtd = dt * dec
-    per = 1.0 / _dominant(sim.theta_deg[i0:], dt)
+    per = 1.0 / (f_dom or _dominant(sim.theta_deg[i0:], dt))
     lags = np.arange(max(1, int(0.8 * per / dtd)), int(math.ceil(1.25 * per / dtd)) + 1)
     w = int(round(window / dtd))
     lab, starts = [], []
@@ -620,7 +621,7 @@ def regimes(sim: Simulation, steady_from: float = 0.5, window: float = 5.0) -> d
     return {"regular": frac, "burst": 1.0 - frac, "labels": lab, "window_start_s": starts}
 
 
-def rise_and_fall(sim: Simulation, steady_from: float = 0.5) -> dict:
+def rise_and_fall(sim: Simulation, steady_from: float = 0.5, f_dom: float | None = None) -> dict:
     """The measured "rise-and-fall after each drop" (sec. 3.2: after a sharp
     drop the friction rises and falls once, fast, before it climbs to a new
     peak): in each of Part 1's stick-slip cycles (between its successive
@@ -629,6 +630,7 @@ def rise_and_fall(sim: Simulation, steady_from: float = 0.5) -> dict:
     the cycle's range or more.  Returns the
     fraction of cycles with exactly one (the measured pattern) and the median
     number per cycle."""
+    # (this docstring is the JSON's definition; f_dom: the run's dominant frequency when already known)
     from scipy.signal import find_peaks
 
     dt = float(sim.t[1] - sim.t[0])
@@ -636,7 +638,7 @@ def rise_and_fall(sim: Simulation, steady_from: float = 0.5) -> dict:
     k = max(1, int(round(0.2 / dt)))
     ff = np.convolve(sim.friction[i0:], np.ones(k) / k, mode="same")
     th = sim.theta_deg[i0:]
-    per = 1.0 / _dominant(th, dt)
+    per = 1.0 / (f_dom or _dominant(th, dt))
     tops, _ = find_peaks(th, distance=max(1, int(0.5 * per / dt)), prominence=0.02)
     counts = []
     for a, b in zip(tops[:-1], tops[1:]):
@@ -690,8 +692,9 @@ def _ensemble(params, reading, preload, v0, t_end, members, seed):
     for x0 in initial_states(members, v0, seed):
         sim = simulate(params, t_end=t_end, preload=preload, v0=v0, x0=x0, reading=rd)
         m = metrics(sim)
-        rows.append({**m, "m2_lines": m2_lines(sim), "regimes": regimes(sim), "rise_and_fall": rise_and_fall(sim),
-                     "nswitch": sim.nswitch})
+        f = m["dominant_hz"]            # the steady state's spectrum, read once for all three
+        rows.append({**m, "m2_lines": m2_lines(sim), "regimes": regimes(sim, f_dom=f),
+                     "rise_and_fall": rise_and_fall(sim, f_dom=f), "nswitch": sim.nswitch})
         sims.append(sim)
     lines = np.array([r["m2_lines"] for r in rows])
     kn = matrices(params, rd)[3]
