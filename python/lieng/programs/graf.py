@@ -44,8 +44,10 @@ def lienard_view(ax, xs, ys, pad: float = 0.08) -> None:
     the data's shape, so that a cycle is drawn round and fills the plot; a
     characteristic line reaching beyond the trajectories is cut at the
     axes."""
-    x = np.concatenate([np.ravel(np.asarray(a, float)) for a in (xs if isinstance(xs, (list, tuple)) else [xs])])
-    y = np.concatenate([np.ravel(np.asarray(a, float)) for a in (ys if isinstance(ys, (list, tuple)) else [ys])])
+    def flat(v):
+        return np.concatenate([np.ravel(np.asarray(a, float)) for a in (v if isinstance(v, (list, tuple)) else [v])])
+
+    x, y = flat(xs), flat(ys)
     ok = np.isfinite(x) & np.isfinite(y)
     if not np.any(ok):
         return
