@@ -644,3 +644,35 @@ def test_the_stick_through_a_reversal_counts_from_the_last_arrest():
     j = k[across[0]]
     assert abs(ts[across[0]] - (pr.t[c.peak_i[j + 1]] - pr.t[c.trough_i[j]])) < 1e-12
     assert ts[across[0]] > 1.0 + np.median(np.delete(ts, across))     # the dwell and the longer reload
+
+
+def _core_peaks(vd, dt, fs=1.0, age_r=0.0, age_v=1.0):
+    """The slider core with a constant kinetic friction of half the static
+    limit, no ageing: the displacement at each slip onset."""
+    from lieng import _core
+    n = vd.size
+    x, v, state, status = _core.core_slider(dt, 8, vd, np.ones(n), 2 * math.pi * 5.0, 0.0, fs,
+                                            np.array([0.0, 100.0]), np.array([0.5, 0.5]), 0.0, 0.0, 1.0,
+                                            age_r, age_v, 0.0, 0.0, 0.0, 0.0, 0.0)
+    assert status == 0
+    onset = np.flatnonzero((state[:-1] == 1) & (state[1:] == 0))
+    return onset, x[onset]
+
+
+def test_the_static_limit_follows_the_loading_velocity_as_stated():
+    # slider.f90: stick until x > FS (1 + r ln(max(vl, vr) / vr)), vl the fastest drive of the stick so
+    # far. Geometry of the law itself: a drive stepping 0.5 -> 1 -> 4 mm/s gives peaks FS, FS and
+    # FS (1 + r ln 4); a hold between two sticks at 4 mm/s keeps the faster limit (no slip in the hold)
+    dt, r = 1e-3, 0.1
+    vd = np.concatenate([np.full(20000, 0.5), np.full(20000, 1.0), np.full(20000, 4.0), np.zeros(5000),
+                         np.full(5000, 4.0)])
+    onset, pk = _core_peaks(vd, dt, age_r=r, age_v=1.0)
+    t = onset * dt
+    tol = 4.0 * dt * 4.0                       # a sample's travel at the fastest drive
+    for lo, hi, want in ((2.0, 20.0, 1.0), (22.0, 40.0, 1.0), (42.0, 60.0, 1.0 + r * math.log(4.0))):
+        got = pk[(t > lo) & (t < hi)]
+        assert got.size >= 2 and np.all(np.abs(got - want) < tol), (lo, hi, got, want)
+    assert not np.any((t > 60.0 + dt) & (t < 65.0))           # no slip while the drive holds
+    # without the term the core is unchanged: every peak at FS
+    _, pk0 = _core_peaks(vd, dt)
+    assert np.all(np.abs(pk0[1:] - 1.0) < tol)

@@ -5,7 +5,8 @@
 !> can switch on: a load factor L(t) + kx (x - xref) (load variation through
 !> an exogenous record or through the rig's coupling of the normal force to
 !> the displacement, triggering), a drive velocity vd(t) (drive modulation),
-!> a static limit growing with the stick time (ageing), two kinetic branches
+!> a static limit growing with the stick time (ageing) and with the loading
+!> velocity (rate-dependent static friction), two kinetic branches
 !> (twin mechanism) and creep growing towards the static limit.
 !>
 !>   slip:  x'' = wn**2 (L(t) F - x) - 2 zeta wn x',
@@ -14,7 +15,8 @@
 !>          beyond the ends (b = -1 while the relative speed grows, +1 after
 !>          it has peaked)
 !>   stick: x' = vd(t) (1 - c0 - c1 r**4), r = x / limit (creep),
-!>          until |x| > L(t) fs (1 + a ln(1 + ts/tau))
+!>          until |x| > L(t) fs (1 + a ln(1 + ts/tau) + r ln(max(vl, vr)/vr)),
+!>          vl the fastest |vd| of the stick so far (its loading velocity)
 !>   slip -> stick when s <= 0 and |x| <= L(t) fs.
 !>
 !> Semi-implicit (symplectic) Euler sub-steps; vd and L are linear between
@@ -49,8 +51,8 @@ contains
       f = fg(ns)
    end function phi
 
-   subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, age_a, age_tau, kx, xref, &
-                         creep0, creep1, x0, x, v, state, status)
+   subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, age_a, age_tau, age_r, age_v, &
+                         kx, xref, creep0, creep1, x0, x, v, state, status)
       integer, intent(in) :: n                !< number of output samples (>= 2)
       real(wp), intent(in) :: dt              !< output sample interval (s), > 0
       integer, intent(in) :: nsub             !< sub-steps per sample (>= 1)
@@ -65,6 +67,8 @@ contains
       real(wp), intent(in) :: delta           !< decelerating minus accelerating branch (mm)
       real(wp), intent(in) :: age_a           !< ageing: relative growth per e-fold of stick time
       real(wp), intent(in) :: age_tau         !< ageing time scale (s), > 0
+      real(wp), intent(in) :: age_r           !< static limit's relative growth per e-fold of the loading velocity
+      real(wp), intent(in) :: age_v           !< loading velocity at and below which that term adds nothing (mm/s), > 0
       real(wp), intent(in) :: kx              !< load factor per mm of displacement (coupling)
       real(wp), intent(in) :: xref            !< displacement at which the coupling adds nothing (mm)
       real(wp), intent(in) :: creep0          !< relative velocity in stick as a fraction of the drive
@@ -74,14 +78,14 @@ contains
       real(wp), intent(out) :: v(n)           !< velocity (mm/s)
       integer, intent(out) :: state(n)        !< 1 stick, 0 slip
       integer, intent(out) :: status          !< st_ok, st_bad_argument or st_nonfinite_state
-      real(wp) :: h, xs, vs_, t_st, s, sprev, f, lfac, vdr, lim, a, w, r, b
+      real(wp) :: h, xs, vs_, t_st, s, sprev, f, lfac, vdr, lim, a, w, r, b, vl
       integer :: i, k
       logical :: stick
 
       status = st_ok
       x = 0.0_wp; v = 0.0_wp; state = 0
       if (n < 2 .or. nsub < 1 .or. ns < 1 .or. .not. (dt > 0.0_wp) .or. .not. (wn > 0.0_wp) &
-          .or. .not. (age_tau > 0.0_wp)) then
+          .or. .not. (age_tau > 0.0_wp) .or. .not. (age_v > 0.0_wp)) then
          status = st_bad_argument
          return
       end if
@@ -90,6 +94,7 @@ contains
       vs_ = vd(1)
       stick = .true.
       t_st = 0.0_wp
+      vl = abs(vd(1))
       b = -1.0_wp
       sprev = 0.0_wp
       x(1) = xs; v(1) = vs_; state(1) = 1
@@ -101,8 +106,14 @@ contains
             if (kx /= 0.0_wp) lfac = max(lfac + kx * (xs - xref), 0.05_wp)
             if (stick) then
                t_st = t_st + h
+               vl = max(vl, abs(vdr))
                lim = lfac * fs
-               if (age_a /= 0.0_wp) lim = lim * (1.0_wp + age_a * log(1.0_wp + t_st / age_tau))
+               if (age_a /= 0.0_wp .or. age_r /= 0.0_wp) then
+                  r = 0.0_wp
+                  if (age_a /= 0.0_wp) r = age_a * log(1.0_wp + t_st / age_tau)
+                  if (age_r /= 0.0_wp) r = r + age_r * log(max(vl, age_v) / age_v)
+                  lim = lim * max(1.0_wp + r, 0.05_wp)
+               end if
                vs_ = vdr
                if (creep0 /= 0.0_wp .or. creep1 /= 0.0_wp) then
                   r = 0.0_wp
@@ -133,6 +144,7 @@ contains
                if (s <= 0.0_wp .and. abs(xs) <= lfac * fs) then
                   stick = .true.
                   t_st = 0.0_wp
+                  vl = abs(vdr)
                   vs_ = vdr
                end if
             end if

@@ -63,6 +63,8 @@ class Params:
     delta: float = 0.0             # twin: decelerating minus accelerating branch (mm)
     age_a: float = 0.0             # ageing: FS (1 + a ln(1 + ts/tau))
     age_tau: float = 0.01
+    age_r: float = 0.0             # rate-dependent static friction: ... + r ln(vl / age_v), vl the loading velocity
+    age_v: float = 1.0             # (mm/s)
     load_k: float = 0.0            # exogenous: load = 1 + load_k * (ylow - mean), ylow measured
     load_kx: float = 0.0           # coupled: load += load_kx * (x - load_xref)
     load_xref: float = 0.0
@@ -163,7 +165,8 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
         load = load * (1.0 + p.level_a * np.sin(2 * math.pi * p.level_f * pr.pos[sl] + p.level_ph))
     load = np.maximum(load, 0.05)
     x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta,
-                                            p.age_a, max(p.age_tau, 1e-3 * dt), p.load_kx, p.load_xref, p.creep0, p.creep1,
+                                            p.age_a, max(p.age_tau, 1e-3 * dt), p.age_r, max(p.age_v, 1e-12),
+                                            p.load_kx, p.load_xref, p.creep0, p.creep1,
                                             float(start))
     if status != st.OK:
         raise LiengInputError(f"the slider simulation failed ({st.name(status)}): check --fn and the record's units")

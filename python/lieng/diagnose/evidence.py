@@ -254,6 +254,15 @@ def stick_times(pr: Prepared, c: Cycles):
     return k[ok], ts[ok], pr.x[c.peak_i[k[ok] + 1]]
 
 
+def stick_loading(pr: Prepared, c: Cycles, k) -> np.ndarray:
+    """The loading velocity of the sticks that follow slips ``k`` (from
+    :func:`stick_times`): the fastest |drive velocity| between the slip's
+    trough and the next peak (mm/s), as the slider core applies it."""
+    a = np.abs(np.asarray(pr.vd, float))
+    lo, hi = c.trough_i[k], c.peak_i[k + 1]
+    return np.array([float(np.max(a[i:j + 1])) for i, j in zip(lo, hi)])
+
+
 def _ageing(pr: Prepared, c: Cycles):
     _, ts, pk = stick_times(pr, c)
     if ts.size < 4:

@@ -8,7 +8,12 @@ whose conditions change along it, a stepped drive or holds, is judged where
 they differ, not only where they end).  For each named effect a few candidates of the
 nested extension (the baseline plus that one term) are fitted on the
 training part from the evidence's estimate and the best on the training
-error kept.
+error kept.  Ageing's candidates include, when the sticks were loaded at
+different drive velocities (a stepped drive), a static limit that also
+follows the loading velocity (rate-dependent static friction, the direct
+effect of a rate-and-state law): FS (1 + a ln(1 + ts/tau) + r ln(vl/vr)),
+fitted on the training sticks as the core applies it; on a stepped drive the
+stick time alone cannot carry the peaks across the steps.
 
 **Metric** (does not contain any effect's own statistic): on the held-out
 cycles, one cycle ahead from the record's own state (from each trough, the
@@ -41,7 +46,7 @@ import numpy as np
 
 from lieng.errors import LiengInputError
 from lieng.diagnose.baseline import Params, identify, model_y, pr_like, run_slice, simulate, slip_friction
-from lieng.diagnose.evidence import _stick_series, stick_times
+from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, lowpass
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
 
@@ -329,6 +334,7 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
         sels = [ctr_sel[k]]
         if not np.array_equal(sels[0], sels[0] & c.next_ok[k]):
             sels.append(sels[0] & c.next_ok[k])
+        vl = stick_loading(pr, c, k)
         for sel in sels:
             if np.count_nonzero(sel) < 4 or np.ptp(np.log(ts[sel])) <= 0:
                 continue
@@ -338,6 +344,22 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 fs = max(a0 + b * math.log(tau), 0.2 * base.fs)
                 for sc in (0.8, 1.0, 1.25):
                     out.append(lvl(base.copy(age_tau=tau, fs=fs, age_a=sc * b / fs)))
+            # a stepped drive: the peak also follows the loading velocity (rate-dependent static friction,
+            # the direct effect of a rate-and-state law), which the stick time alone cannot carry across steps
+            lv = np.log(np.maximum(vl[sel], 1e-300))
+            if np.count_nonzero(sel) >= 6 and np.all(vl[sel] > 0) and np.ptp(lv) > 0.3:
+                vref = float(np.exp(np.min(lv)))    # the slowest loading: the term adds nothing there
+                for ftau in (0.1, 0.5, 2.0):
+                    # the core's own law, fitted as it applies it: FS (1 + a ln(1 + ts/tau) + r ln(vl/vref))
+                    tau = ftau * float(np.min(ts[sel]))
+                    X = np.column_stack([np.ones(lv.size), np.log1p(ts[sel] / tau), lv - math.log(vref)])
+                    if np.linalg.cond(X - np.r_[0.0, X[:, 1:].mean(0)]) > 1e3:
+                        continue
+                    fs, b, r = np.linalg.lstsq(X, pk[sel], rcond=None)[0]
+                    if b > 0 and r > 0 and fs > target:     # a limit below the troughs would not arrest
+                        for sc in (0.8, 1.0, 1.25):
+                            out.append(lvl(base.copy(age_tau=tau, fs=fs, age_a=sc * b / fs, age_r=sc * r / fs,
+                                                     age_v=vref)))
     elif effect == "triggering":
         f_tr = aux["f_tr"]
         if f_tr > 0:
@@ -459,7 +481,7 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
 
 
 #: the parameter each extension scales (refined on the training error)
-SCALED = {"twin_branch": ("delta",), "load_variation": ("load_k", "load_kx"), "static_ageing": ("age_a",),
+SCALED = {"twin_branch": ("delta",), "load_variation": ("load_k", "load_kx"), "static_ageing": ("age_a", "age_r"),
           "triggering": ("trig_eps",), "drive_modulation": ("drv_a",), "friction_drift": ("drift", "level_a"),
           "creep": ("creep1",)}
 
