@@ -676,3 +676,36 @@ def test_the_static_limit_follows_the_loading_velocity_as_stated():
     # without the term the core is unchanged: every peak at FS
     _, pk0 = _core_peaks(vd, dt)
     assert np.all(np.abs(pk0[1:] - 1.0) < tol)
+
+
+def test_a_stretch_between_two_slips_that_is_no_line_is_no_stick_for_the_drive():
+    """A sawtooth at v0 with, after every fourth slip, 3 s in which the slider
+    oscillates about a level instead of sticking (a stepped drive that puts it
+    in another regime): the drive evidence reads only the sticks in which x
+    is a line (stick velocity = the drive), so a regime change is not a drive
+    modulation (geometry of the trace)."""
+    from lieng.diagnose import record_from_arrays
+    from lieng.diagnose.evidence import _stick_series
+    from lieng.diagnose.segment import find_cycles, prepare, stick_ratios
+
+    fn, dt, v0 = 10.0, 0.002, 1.0
+    wn = 2 * math.pi * fn
+    g = np.random.default_rng(5)
+    X = []
+    for k in range(16):
+        if k % 4 == 3:                                        # no stick: an oscillation of 0.04 about 0.1
+            s = np.arange(int(3.0 / dt)) * dt
+            X.append(np.linspace(-0.25, 0.1, int(0.35 / dt)))
+            X.append(0.1 + 0.04 * np.sin(2 * math.pi * 2.0 * s))
+            X.append(np.linspace(0.1, 0.25, int(0.15 / dt)))
+        else:
+            X.append(-0.25 + v0 * np.arange(int(0.5 / dt)) * dt)
+        X.append(0.25 * np.cos(wn * np.arange(int(0.5 / fn / dt)) * dt))
+    x = np.concatenate(X) + 0.002 * g.standard_normal(sum(a.size for a in X))
+    t = np.arange(x.size) * dt
+    pr = prepare(record_from_arrays(t, x, np.full(x.size, v0)))
+    c = find_cycles(pr, fn)
+    _, r_all = stick_ratios(pr, c)
+    _, r = _stick_series(pr, c)
+    assert np.any(np.abs(r_all) < 0.3)                      # the oscillating stretches, read as sticks
+    assert r.size >= 9 and np.all(np.abs(r - 1.0) < 0.05)   # only the sticks: at the drive

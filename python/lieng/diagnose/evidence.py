@@ -297,7 +297,7 @@ def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
 
 def _stick_series(pr: Prepared, c: Cycles):
     """Per stick: the time of its middle and the stick velocity over the drive."""
-    return stick_ratios(pr, c)
+    return stick_ratios(pr, c, lines_only=True)
 
 
 def _drive(pr: Prepared, c: Cycles, fn: float, nperm: int = 199):

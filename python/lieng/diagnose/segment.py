@@ -461,9 +461,17 @@ def estimate_fn(p: Prepared, c: Cycles, fn_guess: float | None = None):
     return f, se, len(slips)
 
 
-def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875)):
+#: a stick's rise over its scatter about a line, at least (a line, not an oscillation)
+STICK_LINE = 5.0
+
+
+def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875), lines_only: bool = False):
     """Per stick (trough to next peak, the fraction ``part`` of it): the time
-    of its middle and the slope of x there over the mean drive."""
+    of its middle and the slope of x there over the mean drive.  With
+    ``lines_only``, only where x is a line there (its rise over the part at
+    least STICK_LINE times the scatter about the line): a stretch between two
+    slips in which the slider oscillates or slides (a drive step into another
+    regime) is no stick."""
     tt, rr = [], []
     for k in np.flatnonzero(c.next_ok):
         lo, hi = c.trough_i[k], c.peak_i[k + 1]
@@ -474,6 +482,10 @@ def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875)):
         vd = float(np.mean(pr.vd[seg]))
         if vd <= 0:
             continue
+        co = np.polyfit(pr.t[seg], pr.x[seg], 1)
+        scatter = float(np.std(pr.x[seg] - np.polyval(co, pr.t[seg])))
+        if lines_only and not abs(co[0]) * float(pr.t[seg[-1]] - pr.t[seg[0]]) >= STICK_LINE * scatter:
+            continue
         tt.append(float(np.mean(pr.t[seg])))
-        rr.append(np.polyfit(pr.t[seg], pr.x[seg], 1)[0] / vd)
+        rr.append(co[0] / vd)
     return np.asarray(tt), np.asarray(rr)
