@@ -78,7 +78,7 @@ contains
       real(wp), intent(out) :: v(n)           !< velocity (mm/s)
       integer, intent(out) :: state(n)        !< 1 stick, 0 slip
       integer, intent(out) :: status          !< st_ok, st_bad_argument or st_nonfinite_state
-      real(wp) :: h, xs, vs_, t_st, s, sprev, f, lfac, vdr, lim, a, w, r, b, vl
+      real(wp) :: h, xs, vs_, t_st, s, sprev, f, lfac, vdr, lim, a, w, r, b, vl, grow
       integer :: i, k
       logical :: stick
 
@@ -109,10 +109,10 @@ contains
                vl = max(vl, abs(vdr))
                lim = lfac * fs
                if (age_a /= 0.0_wp .or. age_r /= 0.0_wp) then
-                  r = 0.0_wp
-                  if (age_a /= 0.0_wp) r = age_a * log(1.0_wp + t_st / age_tau)
-                  if (age_r /= 0.0_wp) r = r + age_r * log(max(vl, age_v) / age_v)
-                  lim = lim * max(1.0_wp + r, 0.05_wp)
+                  grow = 0.0_wp
+                  if (age_a /= 0.0_wp) grow = age_a * log(1.0_wp + t_st / age_tau)
+                  if (age_r /= 0.0_wp) grow = grow + age_r * log(max(vl, age_v) / age_v)
+                  lim = lim * max(1.0_wp + grow, 0.05_wp)
                end if
                vs_ = vdr
                if (creep0 /= 0.0_wp .or. creep1 /= 0.0_wp) then

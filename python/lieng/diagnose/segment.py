@@ -483,9 +483,10 @@ def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875), lines_only: bool =
         if vd <= 0:
             continue
         co = np.polyfit(pr.t[seg], pr.x[seg], 1)
-        scatter = float(np.std(pr.x[seg] - np.polyval(co, pr.t[seg])))
-        if lines_only and not abs(co[0]) * float(pr.t[seg[-1]] - pr.t[seg[0]]) >= STICK_LINE * scatter:
-            continue
+        if lines_only:
+            scatter = float(np.std(pr.x[seg] - np.polyval(co, pr.t[seg])))
+            if not abs(co[0]) * float(pr.t[seg[-1]] - pr.t[seg[0]]) >= STICK_LINE * scatter:
+                continue
         tt.append(float(np.mean(pr.t[seg])))
         rr.append(co[0] / vd)
     return np.asarray(tt), np.asarray(rr)
