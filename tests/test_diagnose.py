@@ -568,6 +568,35 @@ def test_a_columns_unit_decides_between_the_roles_its_name_allows(tmp_path):
         read_record(p2, stiffness=1000.0)
 
 
+
+def test_a_friction_coefficient_column_is_the_force_over_the_load(tmp_path):
+    """Tribometers often record the friction coefficient: "COF" with a
+    normal force column is the force mu N (x = mu N / k); "mu" alone is a
+    force in units of the load, whose scale the sticks give (so --stiffness
+    has nothing to act on and is refused, naming the column); "Ff (N)" is
+    the friction force."""
+    from lieng.diagnose import read_record
+    from lieng.diagnose.read import _role
+    from lieng.errors import LiengInputError
+
+    assert _role("Friction coefficient", "") == "mu"
+    assert _role("COF", "-") == "mu"
+    assert _role("Ff", "N") == "F"
+    t = np.arange(0.0, 20.0, 0.005)
+    mu = 0.3 + 0.05 * ((t * 2.37) % 1.0)
+    N = np.full_like(t, 4.0)
+    p = tmp_path / "cof.csv"
+    _write(p, {"Time (s)": t, "COF": mu, "Normal force (N)": N})
+    rec = read_record(p, v0=1.0, stiffness=2000.0)
+    assert np.allclose(rec.x, mu * 4.0 / 2000.0 * 1e3) and rec.y_is_force
+    assert any("friction coefficient" in n for n in rec.notes)
+    p2 = tmp_path / "mu.csv"
+    _write(p2, {"t [s]": t, "mu": mu})
+    rec2 = read_record(p2, v0=1.0)
+    assert rec2.stiffness_unknown and np.allclose(rec2.x, 1e3 * mu)       # mu N0 over k = 1 N/m, in mm
+    with pytest.raises(LiengInputError, match="column mu is a friction coefficient"):
+        read_record(p2, v0=1.0, stiffness=2000.0)
+
 def test_a_slip_ends_at_its_arrest_not_in_the_hold_after_it():
     """A stick-slip trace whose drive stops after one slip (a hold of 20
     stick times, noisy flat x): that slip's trough is its arrest, the slip

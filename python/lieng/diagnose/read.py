@@ -12,7 +12,10 @@ units in the header in brackets or the defaults below):
   friction force read through the spring (N, mN, uN or kN), the normal force,
   the drive (stage) position (mm, um, m) or velocity; x = F / stiffness.
   Without the stiffness the diagnosis estimates it from the sticks (x rises
-  at the drive velocity while the slider sticks) and says so.
+  at the drive velocity while the slider sticks) and says so.  A friction
+  coefficient column (``mu``, ``COF``) stands for F: times the normal force
+  column when there is one, else a force in units of the (constant) load,
+  whose scale only the sticks can give.
 
 Without a drive column the constant ``v0`` is used; a drive may be signed
 and may reverse (reciprocating rigs: see :mod:`.segment`).  Uneven sampling
@@ -45,7 +48,9 @@ _NAMES = {
     "x": ("x", "disp", "displacement", "extension", "spring"),
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity"),
-    "F": ("f", "friction", "force", "friction_force", "ft", "fx", "tangential", "tangential_force", "lateral_force"),
+    "F": ("f", "friction", "force", "friction_force", "ft", "ff", "f_f", "fr", "fx", "tangential", "tangential_force",
+          "lateral_force"),
+    "mu": ("mu", "µ", "μ", "cof", "coefficient_of_friction", "friction_coefficient", "fnorm", "mu_k"),
     "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive"),
 }
@@ -113,7 +118,7 @@ def _check_v0(v0) -> None:
 
 #: words that give a column its role when its name is none of _NAMES
 #: ("Tangential force", "Normal load", "Stage position"), first match wins
-_WORDS = (("N", ("normal", "load")), ("F", ("friction", "tangential", "lateral", "shear", "traction")),
+_WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load")), ("F", ("friction", "tangential", "lateral", "shear", "traction")),
           ("position", ("position", "stage")), ("v0", ("velocity", "speed")), ("t", ("time",)),
           ("x", ("displacement", "extension")))
 
@@ -146,6 +151,28 @@ def _scale(path, name, unit, table, what):
     if u not in table:
         _fail(f"{path}: column {name}: unit {unit!r} not understood for a {what} (use {', '.join(k for k in table if k)})")
     return table[u]
+
+
+def _friction_from_mu(path, cols, units, stiffness) -> str:
+    """A friction coefficient column (mu, COF) as the friction force: mu N
+    with a normal force column; without one, mu itself, a force in units of
+    the (constant) normal load, whose scale the sticks give (the stiffness
+    read from them is then k / N, in 1/m)."""
+    name, mu = cols["mu"]
+    if units["mu"].strip() not in ("", "-", "1"):
+        _fail(f"{path}: column {name}: unit {units['mu']!r}: a friction coefficient has none")
+    if "N" in cols:
+        N = cols["N"][1] * _scale(path, cols["N"][0], units["N"], _FORCE, "force")
+        cols["F"], units["F"] = (f"{name} x {cols['N'][0]}", mu * N), "N"
+        return f"friction force = column {name} (a friction coefficient) x column {cols['N'][0]}"
+    elif stiffness is not None:
+        _fail(f"{path}: column {name} is a friction coefficient and there is no normal force column: the force "
+              f"--stiffness {stiffness:g} N/m would act on is unknown; add the normal force column, or leave out "
+              f"--stiffness (the scale of mu is then read from the sticks)")
+    else:
+        cols["F"], units["F"] = (name, mu), "N"
+        return (f"column {name} is a friction coefficient and no normal force is recorded: read as a force in units "
+                f"of the normal load (constant), so the stiffness read from the sticks is k / N (1/m)")
 
 
 def _smooth_derivative(y, dt, win):
@@ -195,8 +222,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
             cols[role], units[role] = (name, tab.columns[name]), unit
     if "t" not in cols:
         _fail(f"{path}: no time column (t or time) in the header")
+    mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
+        else None
     if "x" not in cols and "F" not in cols:
-        _fail(f"{path}: no displacement (x) or friction force (F) column in the header")
+        _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column in the header")
     n = len(tab)
     if n < MIN_SAMPLES:
         _fail(f"{path}: {n} samples: too short for stick-slip analysis (at least {MIN_SAMPLES})")
@@ -209,7 +238,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = []
+    notes = [mu_note] if mu_note else []
     if tab.dropped:
         notes.append(f"{tab.dropped} rows with a missing value (empty, NaN) left out: the record is resampled "
                      f"across them")
