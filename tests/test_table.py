@@ -34,6 +34,10 @@ VARIANTS = {
     "a separator at the end of each line": "t [s],F [N],\n" + _rows(lambda a, b: f"{a},{b},\n"),
     "Fx (tribometer axes)": "Time [s],Fx [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
     "time in ms": "t [ms],F [mN]\n" + _rows(lambda a, b: f"{1000 * a:.3f},{1000 * b:.4f}\n"),
+    "an instrument's metadata above the header": "Instrument: UMT-2\nOperator: A. B.\nSample rate,1000\n\n"
+                                                 "t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "metadata, then a unit row under the header": "Test\tstick-slip\nTime\tForce\ns\tN\n"
+                                                  + _rows(lambda a, b: f"{a}\t{b}\n"),
 }
 
 
@@ -51,6 +55,15 @@ def test_a_variant_reads_as_the_plain_file(tmp_path, what):
     np.testing.assert_allclose(r.t, ref.t, rtol=0, atol=1e-12)
     np.testing.assert_allclose(r.x, ref.x, rtol=1e-9, atol=1e-12)
     assert r.x[0] == pytest.approx(F[0] / K * 1e3)
+
+
+def test_an_instruments_metadata_above_the_header_is_passed_over_and_said(tmp_path):
+    r = _read(tmp_path, "pre.csv", VARIANTS["an instrument's metadata above the header"])
+    assert any(n.startswith("3 lines of text above the header passed over") for n in r.notes)
+    rows = PLAIN.splitlines(keepends=True)
+    rows[1] = f"{T[0]},oops\n"                 # a word in the first data row is a bad row, not a header
+    with pytest.raises(LiengInputError, match=r"line 2, column F: 'oops' is not a number"):
+        _read(tmp_path, "bad1.csv", "".join(rows))
 
 
 @pytest.mark.parametrize("cell", ["NaN", "", "nan", "NA"])

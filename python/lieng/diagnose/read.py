@@ -239,6 +239,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
     notes = [mu_note] if mu_note else []
+    if tab.preamble:
+        notes.append(f"{tab.preamble} lines of text above the header passed over (not part of the table: the "
+                     f"instrument's metadata)")
     if tab.dropped:
         notes.append(f"{tab.dropped} rows with a missing value (empty, NaN) left out: the record is resampled "
                      f"across them")

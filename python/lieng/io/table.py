@@ -41,6 +41,9 @@ class Table:
         self.lines = lines
         #: rows dropped for a missing value (``read_table(..., missing="drop")``)
         self.dropped = 0
+        #: lines of text before the header that are not part of the table
+        #: (an instrument's metadata: "Operator: ...", "Date: ...")
+        self.preamble = 0
 
     def __len__(self):
         return len(self.lines)
@@ -123,6 +126,56 @@ def _is_comment(row: str) -> bool:
     return row.lstrip().startswith(_COMMENT)
 
 
+def _numeric_cells(row: str) -> int:
+    """The number of cells of a row that is all numbers (two at least) under
+    some separator, else 0."""
+    for sep in (",", "\t", ";", None):
+        cells = [_unquote(c) for c in (row.split(sep) if sep else row.split())]
+        while len(cells) > 1 and not cells[-1]:
+            cells.pop()
+        if len(cells) < 2:
+            continue
+        try:
+            [_number(c, sep != ",") for c in cells]
+        except ValueError:
+            continue
+        return len(cells)
+    return 0
+
+
+#: the content lines searched for the header under an instrument's preamble
+PREAMBLE_SCAN = 200
+
+
+def _header_after_preamble(rows, content) -> int:
+    """The index into ``content`` of the header row: the last text row
+    before the first two numeric rows of equal width (the row above a row
+    of units alone), so that an instrument's metadata lines above it
+    ("Operator: ...", "Date: ...") are passed over; 0 when the data start
+    directly under the first row or cannot be found."""
+    width = [_numeric_cells(rows[k]) for k in content[:PREAMBLE_SCAN]]
+    i = next((i for i in range(1, len(width)) if width[i] >= 2 and (i + 1 == len(width) or width[i + 1] == width[i])),
+             None)
+    if i is None or i < 2:
+        return 0
+    h = i - 1
+    above = rows[content[h]]
+    cells = [c for c in re.split(r"[,;\t]|\s+", above.strip()) if c]
+    if h >= 1 and all(len(_unquote(c)) <= 12 for c in cells) and len(cells) <= width[i]:
+        # a row of units alone under the header ("s,N,N"): the header is the row above it
+        prev = rows[content[h - 1]]
+        if len([c for c in re.split(r"[,;\t]", prev) if c.strip()]) == width[i] and not _numeric_cells(prev):
+            h -= 1
+    # a header has no number in it (a data row with a word in it is a bad row, named as such)
+    for c in re.split(r"[,;\t]|\s+", rows[content[h]].strip()):
+        try:
+            float(_unquote(c).replace(",", "."))
+            return 0
+        except ValueError:
+            pass
+    return h
+
+
 def read_table(path, expect: str, missing: str = "error") -> Table:
     """Read a delimited numeric table with a header row.
 
@@ -131,7 +184,9 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
     path : str or path-like
         The file: comma, semicolon, TAB or whitespace separated (the header
         row decides); blank lines and comment lines (``#``, ``%``, ``//``)
-        are skipped, also before the header.  A header cell may be
+        are skipped, also before the header, and so are lines of text
+        above the header (an instrument's metadata) when the numeric rows
+        start further down (:attr:`Table.preamble` counts them).  A header cell may be
         quoted and carry its unit as ``name [unit]``, ``name (unit)`` or
         ``name/unit``; a row of units alone under the header is read as
         the units.  With a semicolon, TAB or whitespace separator a decimal
@@ -161,9 +216,16 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
     if len(rows) > MAX_ROWS + 1 and sum(1 for r in rows if r.strip()) > MAX_ROWS + 1:
         raise LiengInputError(f"{path}: more than {MAX_ROWS} rows: split the record (lieng reads at most "
                               f"{MAX_ROWS} rows)")
-    k0 = next((k for k, r in enumerate(rows) if r.strip() and not _is_comment(r)), None)
-    if k0 is None:
+    content = []
+    for k, r in enumerate(rows):
+        if r.strip() and not _is_comment(r):
+            content.append(k)
+            if len(content) > PREAMBLE_SCAN:
+                break
+    if not content:
         raise LiengInputError(f"{path}: empty file: expected a header {expect}")
+    skipped = _header_after_preamble(rows, content)
+    k0 = content[skipped]
     k1 = next((k for k in range(k0 + 1, len(rows)) if rows[k].strip() and not _is_comment(rows[k])), None)
     first = None if k1 is None else rows[k1]
     sep, head = _split_header(rows[k0], first)
@@ -231,6 +293,7 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
     arr = np.asarray(data, float).reshape(len(data), ncol)
     tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
     tab.dropped = dropped
+    tab.preamble = skipped
     return tab
 
 
