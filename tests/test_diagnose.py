@@ -597,6 +597,30 @@ def test_a_friction_coefficient_column_is_the_force_over_the_load(tmp_path):
     with pytest.raises(LiengInputError, match="column mu is a friction coefficient"):
         read_record(p2, v0=1.0, stiffness=2000.0)
 
+
+def test_a_shear_stress_record_stands_for_the_force(tmp_path):
+    """A biaxial (rock mechanics) record: "Shear stress (MPa)" is the
+    friction per area, "Normal stress (MPa)" the load, "Load point
+    displacement (um)" the drive; x is the stress over a stiffness per area
+    read from the sticks (Pa/m), so --stiffness (N/m) is refused, naming the
+    column."""
+    from lieng.diagnose import read_record
+    from lieng.diagnose.read import _role
+    from lieng.errors import LiengInputError
+
+    assert _role("Shear stress", "MPa") == "F" and _role("Normal stress", "MPa") == "N"
+    t = np.arange(0.0, 20.0, 0.005)
+    tau = 3.0 + 0.5 * ((t * 2.37) % 1.0)
+    p = tmp_path / "biax.csv"
+    _write(p, {"Time (s)": t, "Load point displacement (um)": 10.0 * t, "Shear stress (MPa)": tau,
+               "Normal stress (MPa)": np.full_like(t, 10.0)})
+    rec = read_record(p)
+    assert rec.stiffness_unknown and rec.stiffness_unit == "Pa/m" and rec.y_is_force
+    assert np.allclose(rec.x, tau * 1e6 * 1e3) and np.allclose(rec.y, 1e7)
+    assert abs(float(np.median(rec.vd)) - 0.01) < 1e-6                    # 10 um/s
+    with pytest.raises(LiengInputError, match="column Shear stress is a stress"):
+        read_record(p, stiffness=1e6)
+
 def test_a_slip_ends_at_its_arrest_not_in_the_hold_after_it():
     """A stick-slip trace whose drive stops after one slip (a hold of 20
     stick times, noisy flat x): that slip's trough is its arrest, the slip

@@ -255,7 +255,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         pr.x = pr.x / k
         rec.x = rec.x / k
         rec.stiffness = k
-        notes.append(f"tangential stiffness estimated from the sticks: {rec.stiffness:.4g} N/m (the force rises at "
+        notes.append(f"tangential stiffness estimated from the sticks: {rec.stiffness:.4g} {rec.stiffness_unit} (the force rises at "
                      f"stiffness x drive velocity while the slider sticks); give --stiffness to set it")
     span = float(rec.t[-1] - rec.t[0])
     if fn is not None and fn * span < 4:

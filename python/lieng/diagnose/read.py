@@ -58,6 +58,8 @@ _LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3
 _VELOCITY = {"": 1.0, "mm/s": 1.0, "um/s": 1e-3, "µm/s": 1e-3, "m/s": 1e3, "cm/s": 10.0, "mm/min": 1 / 60}
 _TIME = {"": 1.0, "s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0}
 _FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "kn": 1e3}
+#: stresses (Pa): a shear and a normal stress stand for the forces (a rock-mechanics biaxial rig)
+_STRESS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "bar": 1e5, "psi": 6894.757}
 
 
 @dataclass
@@ -96,6 +98,9 @@ class Record:
     #: 1000 until the diagnosis estimates the stiffness (N/m) from the sticks
     stiffness_unknown: bool = False
     stiffness: float | None = None
+    #: the unit of that stiffness: N/m, Pa/m for a stress record, 1/m for
+    #: a friction coefficient without a normal force
+    stiffness_unit: str = "N/m"
 
     @property
     def dt(self) -> float:
@@ -125,7 +130,7 @@ _WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load")), ("
 
 #: the roles a column of a given unit's dimension can have
 _FITS = (("position", _LENGTH), ("x", _LENGTH), ("y", _LENGTH), ("v0", _VELOCITY), ("t", _TIME), ("F", _FORCE),
-         ("N", _FORCE))
+         ("N", _FORCE), ("F", _STRESS), ("N", _STRESS))
 
 
 def _role(name: str, unit: str = ""):
@@ -153,6 +158,18 @@ def _scale(path, name, unit, table, what):
     return table[u]
 
 
+def _is_stress(unit: str) -> bool:
+    return unit.strip().lower().replace(" ", "") in _STRESS
+
+
+def _load(path, cols, units):
+    """The normal channel as recorded: a force (N) or a stress (Pa)."""
+    name, unit = cols["N"][0], units["N"]
+    if _is_stress(unit):
+        return cols["N"][1] * _STRESS[unit.strip().lower().replace(" ", "")]
+    return cols["N"][1] * _scale(path, name, unit, _FORCE, "force (or a stress: Pa, kPa, MPa)")
+
+
 def _friction_from_mu(path, cols, units, stiffness) -> str:
     """A friction coefficient column (mu, COF) as the friction force: mu N
     with a normal force column; without one, mu itself, a force in units of
@@ -162,8 +179,8 @@ def _friction_from_mu(path, cols, units, stiffness) -> str:
     if units["mu"].strip() not in ("", "-", "1"):
         _fail(f"{path}: column {name}: unit {units['mu']!r}: a friction coefficient has none")
     if "N" in cols:
-        N = cols["N"][1] * _scale(path, cols["N"][0], units["N"], _FORCE, "force")
-        cols["F"], units["F"] = (f"{name} x {cols['N'][0]}", mu * N), "N"
+        cols["F"], units["F"] = (f"{name} x {cols['N'][0]}", mu * _load(path, cols, units)), \
+            "Pa" if _is_stress(units["N"]) else "N"
         return f"friction force = column {name} (a friction coefficient) x column {cols['N'][0]}"
     elif stiffness is not None:
         _fail(f"{path}: column {name} is a friction coefficient and there is no normal force column: the force "
@@ -222,6 +239,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
             cols[role], units[role] = (name, tab.columns[name]), unit
     if "t" not in cols:
         _fail(f"{path}: no time column (t or time) in the header")
+    orig = set(cols)
     mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
         else None
     if "x" not in cols and "F" not in cols:
@@ -253,16 +271,24 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         if "y" in cols:
             y = cols["y"][1] * _scale(path, cols["y"][0], units["y"], _LENGTH, "displacement")
         elif "N" in cols:
-            y, y_force = cols["N"][1] * _scale(path, cols["N"][0], units["N"], _FORCE, "force"), True
+            y, y_force = _load(path, cols, units), True
     else:
         unknown = stiffness is None
         if not unknown and not (math.isfinite(stiffness) and 1e-6 <= stiffness <= 1e12):
             _fail(f"--stiffness {stiffness:g}: the stiffness must be a number from 1e-06 to 1e+12 (N/m)")
-        F = cols["F"][1] * _scale(path, cols["F"][0], units["F"], _FORCE, "force")
+        if _is_stress(units["F"]):
+            if not unknown:
+                _fail(f"{path}: column {cols['F'][0]} is a stress ({units['F']}): --stiffness (N/m) does not apply; "
+                      f"leave it out (the stiffness per area is then read from the sticks)")
+            F = cols["F"][1] * _STRESS[units["F"].strip().lower().replace(" ", "")]
+            notes.append(f"column {cols['F'][0]} is a stress: read as the friction force per area, so the stiffness "
+                         f"read from the sticks is per area (Pa/m)")
+        else:
+            F = cols["F"][1] * _scale(path, cols["F"][0], units["F"], _FORCE, "force (or a stress: Pa, kPa, MPa)")
         x = F / (1.0 if unknown else stiffness) * 1e3
         y, y_force = None, False
         if "N" in cols:
-            y, y_force = cols["N"][1] * _scale(path, cols["N"][0], units["N"], _FORCE, "force"), True
+            y, y_force = _load(path, cols, units), True
         elif "y" in cols:
             y = cols["y"][1] * _scale(path, cols["y"][0], units["y"], _LENGTH, "displacement")
     # the drive
@@ -292,7 +318,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         _fail(f"{path}: the drive never moves (all zero): no stick-slip")
     out = Record(t=t, x=x, vd=vd, y=y, y_is_force=y_force, drive_recorded=recorded, source=str(path), notes=notes,
                  stiffness_unknown="F" in cols and "x" not in cols and stiffness is None,
-                 stiffness=stiffness if "F" in cols and "x" not in cols else None)
+                 stiffness=stiffness if "F" in cols and "x" not in cols else None,
+                 stiffness_unit="Pa/m" if "F" in cols and _is_stress(units["F"]) else
+                 "1/m" if "mu" in cols and "N" not in cols and "F" not in orig else "N/m")
     condition(out)
     return out
 
