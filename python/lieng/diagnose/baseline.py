@@ -38,7 +38,7 @@ import numpy as np
 from lieng import _core
 from lieng.errors import LiengInputError
 from lieng import status as st
-from lieng.diagnose.segment import Cycles, Prepared, slip_seconds, stick_ratios
+from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_seconds, stick_ratios
 
 __all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "model_y", "calibrate_fn"]
 
@@ -252,12 +252,10 @@ def stick_creep(pr: Prepared, c: Cycles) -> tuple:
     c0 = 1.0 - float(np.median(r))
     se = 1.2533 * float(np.std(r)) / math.sqrt(r.size)
     c0 = float(np.clip(c0, 0.0, 0.5)) if abs(c0) > 3 * se else 0.0
-    mid = stick_ratios(pr, c, (0.3, 0.6))[1]
-    late = stick_ratios(pr, c, (0.8, 0.97))[1]
-    n = min(mid.size, late.size)
+    mid, late = creep_pairs(pr, c)
     c1 = 0.0
-    if n >= 4:
-        d = 1.0 - late[:n] / np.where(mid[:n] != 0, mid[:n], np.nan)
+    if mid.size >= 4:
+        d = 1.0 - late / np.where(mid != 0, mid, np.nan)
         d = d[np.isfinite(d)]
         if d.size >= 4:
             m, e = float(np.median(d)), 1.2533 * float(np.std(d)) / math.sqrt(d.size)

@@ -77,7 +77,7 @@ from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
 from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit, lowpass, position_anova,
                                      spectral_line, y_locked)
-from lieng.diagnose.segment import Cycles, Prepared, slip_arcs, stick_ratios
+from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_ratios
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "lowpass"]
 
@@ -313,12 +313,10 @@ def _drive(pr: Prepared, c: Cycles, fn: float, nperm: int = 199):
 
 
 def _creep(pr: Prepared, c: Cycles):
-    mid = stick_ratios(pr, c, (0.3, 0.6))[1]
-    late = stick_ratios(pr, c, (0.8, 0.97))[1]
-    n = min(mid.size, late.size)
+    mid, late = creep_pairs(pr, c)
+    n = mid.size
     if n < 4:
         return 0.0, math.inf
-    mid, late = mid[:n], late[:n]
     est = lambda keep: float(1.0 - np.median(late[keep]) / np.median(mid[keep]))
     return est(np.ones(n, bool)), _jackknife(est, n)
 

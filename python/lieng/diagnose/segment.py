@@ -465,14 +465,15 @@ def estimate_fn(p: Prepared, c: Cycles, fn_guess: float | None = None):
 STICK_LINE = 5.0
 
 
-def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875), lines_only: bool = False):
+def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875), lines_only: bool = False, index: bool = False):
     """Per stick (trough to next peak, the fraction ``part`` of it): the time
-    of its middle and the slope of x there over the mean drive.  With
-    ``lines_only``, only where x is a line there (its rise over the part at
-    least STICK_LINE times the scatter about the line): a stretch between two
-    slips in which the slider oscillates or slides (a drive step into another
-    regime) is no stick."""
-    tt, rr = [], []
+    of its middle and the slope of x there over the mean drive (and, with
+    ``index``, the stick's cycle, so that two parts of one stick can be
+    paired).  With ``lines_only``, only where x is a line there (its rise
+    over the part at least STICK_LINE times the scatter about the line): a
+    stretch between two slips in which the slider oscillates or slides (a
+    drive step into another regime) is no stick."""
+    tt, rr, kk = [], [], []
     for k in np.flatnonzero(c.next_ok):
         lo, hi = c.trough_i[k], c.peak_i[k + 1]
         m = hi - lo
@@ -489,4 +490,15 @@ def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875), lines_only: bool =
                 continue
         tt.append(float(np.mean(pr.t[seg])))
         rr.append(co[0] / vd)
-    return np.asarray(tt), np.asarray(rr)
+        kk.append(int(k))
+    return (np.asarray(tt), np.asarray(rr), np.asarray(kk, int)) if index else (np.asarray(tt), np.asarray(rr))
+
+
+def creep_pairs(pr: Prepared, c: Cycles):
+    """The stick slope over the drive in the middle of each stick (30-60 %
+    of its rise) and in its last part (80-97 %), paired stick by stick (a
+    stick too short for one of the parts is left out of both)."""
+    _, mid, km = stick_ratios(pr, c, (0.3, 0.6), index=True)
+    _, late, kl = stick_ratios(pr, c, (0.8, 0.97), index=True)
+    _, im, il = np.intersect1d(km, kl, return_indices=True)
+    return mid[im], late[il]
