@@ -376,3 +376,25 @@ def test_a_time_column_in_the_wrong_unit_is_named(tmp_path, capsys):
     p.write_text("t,x\n" + "".join(f"{a:.17g},{b:.17g}\n" for a, b in zip(t, x)))
     code, _, err = run(["diagnose", p, "--v0", "1", "-o", tmp_path / "o"], capsys)
     one_line_error(code, err, "column t", "unit")
+
+
+def test_a_decks_natural_frequency_that_does_not_fit_the_record_names_the_card(tmp_path, capsys):
+    """Found by a black-box fuzz of the CLI: a TRC deck's OMNH that the
+    readings cannot be analysed with was blamed on "--fn", which the user
+    never gave; the card is named, and --fn overrides it."""
+    deck = CARDS / "trc_demo.dat"
+    rc = main(["diagnose", str(deck), "--v0", "1", "-o", str(tmp_path / "o"), "-q"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1 and "card OMNH" in err[0] and "--fn 30" not in err[0]
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_cell_with_an_underscore_is_no_number(tmp_path, capsys):
+    """Python reads "0_2" as 2.0; a table cell like that is named as bad."""
+    p = tmp_path / "u.csv"
+    rows = [f"{i * 0.001:.3f},{(i % 50) * 0.01:.2f}" for i in range(300)]
+    rows[20] = "0.020,0_2"
+    p.write_text("t [s],x [mm]\n" + "\n".join(rows) + "\n")
+    rc = main(["diagnose", str(p), "--v0", "1", "-o", str(tmp_path / "o"), "-q"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1 and "line 22, column x: '0_2' is not a number" in err[0]

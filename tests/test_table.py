@@ -34,6 +34,7 @@ VARIANTS = {
     "a separator at the end of each line": "t [s],F [N],\n" + _rows(lambda a, b: f"{a},{b},\n"),
     "Fx (tribometer axes)": "Time [s],Fx [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
     "time in ms": "t [ms],F [mN]\n" + _rows(lambda a, b: f"{1000 * a:.3f},{1000 * b:.4f}\n"),
+    "a Greek mu for micro (U+03BC)": "t [s],F [\u03bcN]\n" + _rows(lambda a, b: f"{a},{1e6 * b:.1f}\n"),
     "an instrument's metadata above the header": "Instrument: UMT-2\nOperator: A. B.\nSample rate,1000\n\n"
                                                  "t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
     "metadata, then a unit row under the header": "Test\tstick-slip\nTime\tForce\ns\tN\n"

@@ -17,11 +17,15 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
     diagnose it: what ``lieng diagnose RECORD`` computes (also a task of
     ``diagnose --batch``).  Returns the :class:`lieng.diagnose.Diagnosis`."""
     from lieng.diagnose import diagnose, read_record, record_from_trc_deck
+    from lieng.diagnose.read import check_fn
 
     if _is_table(data):
         rec = read_record(data, v0=v0, stiffness=stiffness)
     else:                                   # a thesis-style TRC deck: OMNH gives fn
         rec, fn_deck = record_from_trc_deck(data, v0)
+        if fn is None and fn_deck is not None:
+            check_fn(rec, fn_deck, f"{data}: card OMNH ({fn_deck:g} Hz, the deck's natural frequency)",
+                     "OMNH (rad/s) or give --fn")
         fn = fn_deck if fn is None else fn
     extra = {} if fn_uncertainty is None else {"fn_uncertainty": fn_uncertainty}
     return diagnose(rec, fn, progress=progress, **extra)

@@ -25,7 +25,7 @@ from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, slid
 from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset
-from lieng.diagnose.read import Record, read_record, record_from_arrays, record_from_trc_deck
+from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
 from lieng.diagnose.segment import estimate_fn, find_cycles, prepare, slip_seconds
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
@@ -257,13 +257,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         rec.stiffness = k
         notes.append(f"tangential stiffness estimated from the sticks: {rec.stiffness:.4g} {rec.stiffness_unit} (the force rises at "
                      f"stiffness x drive velocity while the slider sticks); give --stiffness to set it")
-    span = float(rec.t[-1] - rec.t[0])
-    if fn is not None and fn * span < 4:
-        raise LiengInputError(f"--fn {fn:g} Hz: the record ({span:.4g} s) spans fewer than 4 natural periods; "
-                              f"check --fn (Hz) and the time column's unit")
-    if fn is not None and fn * pr.dt > 0.2:
-        raise LiengInputError(f"--fn {fn:g} Hz: the record has only {1 / (fn * pr.dt):.1f} samples per natural "
-                              f"period; at least 5 are needed")
+    if fn is not None:
+        check_fn(rec, fn, f"--fn {fn:g} Hz", "--fn (Hz)")
     c0 = find_cycles(pr, fn)
     fd, fse, nsl = estimate_fn(pr, c0, fn) if c0.n >= 3 else (None, None, 0)
     if fd is not None and not (fd * pr.dt < 0.2):

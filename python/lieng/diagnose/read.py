@@ -37,7 +37,7 @@ import numpy as np
 from lieng.errors import LiengInputError
 from lieng.io.table import read_table
 
-__all__ = ["Record", "read_record", "record_from_trc_deck", "record_from_arrays", "MAX_SAMPLES"]
+__all__ = ["Record", "read_record", "record_from_trc_deck", "record_from_arrays", "check_fn", "MAX_SAMPLES"]
 
 #: the longest record read (samples), about 2 GB of working memory at most
 MAX_SAMPLES = 5_000_000
@@ -107,6 +107,17 @@ class Record:
         return float(self.t[1] - self.t[0])
 
 
+def _unit_key(unit: str) -> str:
+    """A unit as the tables below spell it: lower case, no blanks, the micro
+    sign for a Greek mu (U+03BC, as some loggers write it)."""
+    return unit.strip().lower().replace(" ", "").replace("\u03bc", "\u00b5")
+
+
+#: units as they are written, for the messages
+_SHOWN = {"n": "N", "mn": "mN", "un": "uN", "µn": "µN", "kn": "kN", "pa": "Pa", "kpa": "kPa", "mpa": "MPa",
+          "gpa": "GPa"}
+
+
 def _fail(msg):
     raise LiengInputError(msg)
 
@@ -138,7 +149,7 @@ def _role(name: str, unit: str = ""):
     time or force rules out the roles of another dimension ("Load point
     displacement (um)" is the drive's position, not a normal load)."""
     key = name.strip().lower().replace(" ", "_").replace("-", "_")
-    u = unit.strip().lower().replace(" ", "")
+    u = _unit_key(unit)
     fits = {r for r, table in _FITS if u in table} if u else None
     if fits is not None and not fits:
         fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
@@ -152,21 +163,22 @@ def _role(name: str, unit: str = ""):
 
 
 def _scale(path, name, unit, table, what):
-    u = unit.strip().lower().replace(" ", "")
+    u = _unit_key(unit)
     if u not in table:
-        _fail(f"{path}: column {name}: unit {unit!r} not understood for a {what} (use {', '.join(k for k in table if k)})")
+        _fail(f"{path}: column {name}: unit {unit!r} not understood for a {what} "
+              f"(use {', '.join(_SHOWN.get(k, k) for k in table if k)})")
     return table[u]
 
 
 def _is_stress(unit: str) -> bool:
-    return unit.strip().lower().replace(" ", "") in _STRESS
+    return _unit_key(unit) in _STRESS
 
 
 def _load(path, cols, units):
     """The normal channel as recorded: a force (N) or a stress (Pa)."""
     name, unit = cols["N"][0], units["N"]
     if _is_stress(unit):
-        return cols["N"][1] * _STRESS[unit.strip().lower().replace(" ", "")]
+        return cols["N"][1] * _STRESS[_unit_key(unit)]
     return cols["N"][1] * _scale(path, name, unit, _FORCE, "force (or a stress: Pa, kPa, MPa)")
 
 
@@ -280,7 +292,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
             if not unknown:
                 _fail(f"{path}: column {cols['F'][0]} is a stress ({units['F']}): --stiffness (N/m) does not apply; "
                       f"leave it out (the stiffness per area is then read from the sticks)")
-            F = cols["F"][1] * _STRESS[units["F"].strip().lower().replace(" ", "")]
+            F = cols["F"][1] * _STRESS[_unit_key(units["F"])]
             notes.append(f"column {cols['F'][0]} is a stress: read as the friction force per area, so the stiffness "
                          f"read from the sticks is per area (Pa/m)")
         else:
@@ -410,8 +422,9 @@ def despike(x, k: float = 8.0, run: int = SPIKE_RUN):
     step from each of those samples to the one beyond it (a narrow trough
     that the signal enters and leaves as steeply as it is deep, a slip's
     overshoot or a second mode ringing, is not a spike).  The run is
-    replaced by that line.  Returns the cleaned copy and the count of
-    samples replaced."""
+    replaced by that line; a spike in the first or the last sample by the
+    line through the two samples beside it.  Returns the cleaned copy and the
+    count of samples replaced."""
     s = noise_level(x)
     if x.size < run + 4 or s <= 0:
         return x, 0
@@ -445,6 +458,13 @@ def despike(x, k: float = 8.0, run: int = SPIKE_RUN):
                 found += L
         if not found:
             break
+    # the first and the last sample have a neighbour on one side only: a spike there stands out from the
+    # line through the next two samples, which agree with each other
+    for i, j1, j2 in ((0, 1, 2), (y.size - 1, y.size - 2, y.size - 3)):
+        e = y[i] - (2.0 * y[j1] - y[j2])
+        if abs(e) > k * s and abs(y[j1] - y[j2]) < 0.5 * abs(e):
+            y[i] = 2.0 * y[j1] - y[j2]
+            changed[i] = True
     return y, int(np.count_nonzero(changed))
 
 
@@ -517,6 +537,19 @@ def condition(rec: Record) -> None:
             v = v - a * np.cos(2 * math.pi * ff * tt) - b * np.sin(2 * math.pi * ff * tt)
             rec.notes.append(f"mains hum at {ff:.2f} Hz in {name} (amplitude {amp:.3g}) removed")
         setattr(rec, name, v)
+
+
+def check_fn(rec: Record, fn: float, what: str, fix: str) -> None:
+    """A natural frequency the record can be read with: at least 4 natural
+    periods long and 5 samples per period; else an error naming ``what``
+    (the option or card that gave it) and what to ``fix``."""
+    span = float(rec.t[-1] - rec.t[0])
+    if fn * span < 4:
+        _fail(f"{what}: the record ({span:.4g} s) spans fewer than 4 natural periods; check {fix} (and the time "
+              f"column's unit)")
+    dt = float(rec.t[1] - rec.t[0])
+    if fn * dt > 0.2:
+        _fail(f"{what}: the record has only {1 / (fn * dt):.1f} samples per natural period; at least 5 are needed")
 
 
 def record_from_trc_deck(path, v0: float | None) -> tuple[Record, float]:

@@ -76,6 +76,8 @@ def _name_unit(cell: str) -> tuple:
 
 def _number(cell: str, decimal_comma: bool) -> float:
     c = cell.strip()
+    if "_" in c:                          # Python reads "0_2" as 2.0: no instrument writes it
+        raise ValueError(cell)
     if decimal_comma:
         c = c.replace(",", ".")
     return float(c)
