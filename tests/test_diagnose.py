@@ -769,3 +769,22 @@ def test_a_stretch_between_two_slips_that_is_no_line_is_no_stick_for_the_drive()
     _, r = _stick_series(pr, c)
     assert np.any(np.abs(r_all) < 0.3)                      # the oscillating stretches, read as sticks
     assert r.size >= 9 and np.all(np.abs(r - 1.0) < 0.05)   # only the sticks: at the drive
+
+
+def test_a_long_smoothing_window_is_convolved_by_fft_to_scipys_numbers():
+    """A finely sampled record (a quarter natural period of hundreds of
+    samples: a black-box fuzz's 14 kHz record took 78 s, most of it in
+    direct convolutions) is smoothed by FFT: the same numbers as scipy's
+    savgol_filter (mode "interp", edges included) to rounding."""
+    from scipy.signal import savgol_filter
+
+    from lieng.diagnose.segment import FFT_WINDOW, smooth
+
+    g = np.random.default_rng(1)
+    x = np.cumsum(g.standard_normal(50001)) * 1e-3 + np.sin(np.arange(50001) * 0.001)
+    dt, fn = 7e-5, 10.0
+    w = int(round(0.25 / fn / dt)) | 1
+    assert w > FFT_WINDOW
+    for d in (0, 1, 2):
+        ref = savgol_filter(x, w, 3, deriv=d, delta=dt)
+        assert np.max(np.abs(smooth(x, dt, fn, deriv=d) - ref)) < 1e-12 * np.max(np.abs(ref))
