@@ -91,3 +91,24 @@ def test_a_word_where_a_number_belongs_is_still_named(tmp_path):
     rows[10] = f"{T[9]},oops\n"
     with pytest.raises(LiengInputError, match=r"line 11, column F: 'oops' is not a number"):
         _read(tmp_path, "bad.csv", "".join(rows))
+
+
+def test_a_record_without_a_time_column_reads_with_its_sampling_rate(tmp_path):
+    """Loggers that write the samples alone: with --rate the rows are evenly
+    spaced samples (the same record as with its time column), said in the
+    notes; without it the missing column and the option are named; with a
+    time column --rate is ignored and said."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    p = tmp_path / "samples.csv"
+    p.write_text("F [N]\n" + "".join(f"{b}\n" for b in F))
+    r = read_record(p, v0=1.0, stiffness=K, rate=1000.0)
+    np.testing.assert_allclose(r.t, ref.t, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-12)
+    assert any("--rate 1000 Hz" in n for n in r.notes)
+    with pytest.raises(LiengInputError, match="no time column .* give --rate"):
+        read_record(p, v0=1.0, stiffness=K)
+    with pytest.raises(LiengInputError, match="--rate 0: the sampling rate"):
+        read_record(p, v0=1.0, stiffness=K, rate=0.0)
+    q = tmp_path / "plain.csv"
+    assert any("--rate ignored" in n for n in read_record(q, v0=1.0, stiffness=K, rate=50.0).notes)
+

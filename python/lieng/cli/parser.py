@@ -147,6 +147,8 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--fn-uncertainty", type=float, metavar="REL",
                     help="relative uncertainty of --fn (default 0.05); the slip-shape evidence is tested at the "
                          "least favourable fn within it: an fn measured to 0.01 lets smaller twin branches through")
+    dg.add_argument("--rate", type=float, metavar="HZ", help="sampling rate (Hz) of a record without a time "
+                    "column (its rows are then evenly spaced samples)")
     dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record; estimated from the sticks when not given")
     dg.add_argument("--batch", metavar="DIR", help="diagnose every record in DIR (*.csv, *.txt, *.dat; the options "

@@ -215,7 +215,7 @@ def _smooth_derivative(y, dt, win):
     return savgol_filter(y, win, 2, deriv=1, delta=dt)
 
 
-def read_record(path, v0: float | None = None, stiffness: float | None = None) -> Record:
+def read_record(path, v0: float | None = None, stiffness: float | None = None, rate: float | None = None) -> Record:
     """Read a displacement or force record (see the module docstring).
 
     Parameters
@@ -227,6 +227,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         negative (a drive in the negative direction).
     stiffness : float, optional
         Tangential stiffness (N/m): needed for a force record.
+    rate : float, optional
+        Sampling rate (Hz) of a table without a time column (its rows are
+        evenly spaced samples); ignored, and said, when there is one.
 
     Returns
     -------
@@ -249,8 +252,11 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
                 role, unit = _role(stem, suffix), suffix
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
-    if "t" not in cols:
-        _fail(f"{path}: no time column (t or time) in the header")
+    if rate is not None and not (math.isfinite(rate) and 1.0 / DT_RANGE[1] <= rate <= 1.0 / DT_RANGE[0]):
+        _fail(f"--rate {rate:g}: the sampling rate must be a number from {1.0 / DT_RANGE[1]:.3g} to "
+              f"{1.0 / DT_RANGE[0]:.3g} Hz")
+    if "t" not in cols and rate is None:
+        _fail(f"{path}: no time column (t or time) in the header: add one, or give --rate (the sampling rate, Hz)")
     orig = set(cols)
     mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
         else None
@@ -261,7 +267,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         _fail(f"{path}: {n} samples: too short for stick-slip analysis (at least {MIN_SAMPLES})")
     if n > MAX_SAMPLES:
         _fail(f"{path}: {n} samples: more than the {MAX_SAMPLES} this command reads; cut the record")
-    t = cols["t"][1] * _scale(path, cols["t"][0], units["t"], _TIME, "time")
+    if "t" in cols:
+        t = cols["t"][1] * _scale(path, cols["t"][0], units["t"], _TIME, "time")
+    else:
+        t = np.arange(n) / float(rate)
     d = np.diff(t)
     bad = np.flatnonzero(d <= 0)
     if bad.size:
@@ -269,6 +278,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None) -
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
     notes = [mu_note] if mu_note else []
+    if rate is not None:
+        notes.append(f"--rate ignored: the record gives the time (column {cols['t'][0]})" if "t" in orig else
+                     f"no time column: the rows are samples {1.0 / rate:.4g} s apart (--rate {rate:g} Hz)")
     if tab.preamble:
         notes.append(f"{tab.preamble} lines of text above the header passed over (not part of the table: the "
                      f"instrument's metadata)")
