@@ -138,8 +138,9 @@ def build_parser() -> argparse.ArgumentParser:
                                     "models fitted on its first 70, and its first 30 with models fitted on "
                                     "its last 70).")
     dg.add_argument("data", nargs="?", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
-                    "the header (F may be a friction coefficient mu or COF: times N when recorded; 'F [mN]', 'time/s', 'Time (s)', or a row of units; comma, semicolon, TAB or whitespace, a "
-                    "decimal comma, '#' comments; rows with a missing value left out), or a TRC deck")
+                    "the header (F may be a friction coefficient mu or COF: times N when recorded; 'F [mN]', "
+                    "'time/s', 'Time (s)', or a row of units; comma, semicolon, TAB or whitespace, a decimal comma, "
+                    "'#' comments; rows with a missing value left out), or a TRC deck")
     dg.add_argument("--v0", type=float, metavar="MM_S",
                     help="drive velocity (mm/s) when the record has no v0/position column")
     dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "

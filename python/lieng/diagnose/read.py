@@ -174,12 +174,12 @@ def _is_stress(unit: str) -> bool:
     return _unit_key(unit) in _STRESS
 
 
-def _load(path, cols, units):
-    """The normal channel as recorded: a force (N) or a stress (Pa)."""
-    name, unit = cols["N"][0], units["N"]
+def _force(path, cols, units, role):
+    """Column ``role`` (F or N) as recorded: a force (N) or a stress (Pa)."""
+    (name, values), unit = cols[role], units[role]
     if _is_stress(unit):
-        return cols["N"][1] * _STRESS[_unit_key(unit)]
-    return cols["N"][1] * _scale(path, name, unit, _FORCE, "force (or a stress: Pa, kPa, MPa)")
+        return values * _STRESS[_unit_key(unit)]
+    return values * _scale(path, name, unit, _FORCE, "force (or a stress: Pa, kPa, MPa)")
 
 
 def _friction_from_mu(path, cols, units, stiffness) -> str:
@@ -191,7 +191,7 @@ def _friction_from_mu(path, cols, units, stiffness) -> str:
     if units["mu"].strip() not in ("", "-", "1"):
         _fail(f"{path}: column {name}: unit {units['mu']!r}: a friction coefficient has none")
     if "N" in cols:
-        cols["F"], units["F"] = (f"{name} x {cols['N'][0]}", mu * _load(path, cols, units)), \
+        cols["F"], units["F"] = (f"{name} x {cols['N'][0]}", mu * _force(path, cols, units, "N")), \
             "Pa" if _is_stress(units["N"]) else "N"
         return f"friction force = column {name} (a friction coefficient) x column {cols['N'][0]}"
     elif stiffness is not None:
@@ -257,7 +257,6 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
               f"{1.0 / DT_RANGE[0]:.3g} Hz")
     if "t" not in cols and rate is None:
         _fail(f"{path}: no time column (t or time) in the header: add one, or give --rate (the sampling rate, Hz)")
-    orig = set(cols)
     mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
         else None
     if "x" not in cols and "F" not in cols:
@@ -279,7 +278,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
     notes = [mu_note] if mu_note else []
     if rate is not None:
-        notes.append(f"--rate ignored: the record gives the time (column {cols['t'][0]})" if "t" in orig else
+        notes.append(f"--rate ignored: the record gives the time (column {cols['t'][0]})" if "t" in cols else
                      f"no time column: the rows are samples {1.0 / rate:.4g} s apart (--rate {rate:g} Hz)")
     if tab.preamble:
         notes.append(f"{tab.preamble} lines of text above the header passed over (not part of the table: the "
@@ -295,7 +294,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         if "y" in cols:
             y = cols["y"][1] * _scale(path, cols["y"][0], units["y"], _LENGTH, "displacement")
         elif "N" in cols:
-            y, y_force = _load(path, cols, units), True
+            y, y_force = _force(path, cols, units, "N"), True
     else:
         unknown = stiffness is None
         if not unknown and not (math.isfinite(stiffness) and 1e-6 <= stiffness <= 1e12):
@@ -304,15 +303,13 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             if not unknown:
                 _fail(f"{path}: column {cols['F'][0]} is a stress ({units['F']}): --stiffness (N/m) does not apply; "
                       f"leave it out (the stiffness per area is then read from the sticks)")
-            F = cols["F"][1] * _STRESS[_unit_key(units["F"])]
             notes.append(f"column {cols['F'][0]} is a stress: read as the friction force per area, so the stiffness "
                          f"read from the sticks is per area (Pa/m)")
-        else:
-            F = cols["F"][1] * _scale(path, cols["F"][0], units["F"], _FORCE, "force (or a stress: Pa, kPa, MPa)")
+        F = _force(path, cols, units, "F")
         x = F / (1.0 if unknown else stiffness) * 1e3
         y, y_force = None, False
         if "N" in cols:
-            y, y_force = _load(path, cols, units), True
+            y, y_force = _force(path, cols, units, "N"), True
         elif "y" in cols:
             y = cols["y"][1] * _scale(path, cols["y"][0], units["y"], _LENGTH, "displacement")
     # the drive
@@ -344,7 +341,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                  stiffness_unknown="F" in cols and "x" not in cols and stiffness is None,
                  stiffness=stiffness if "F" in cols and "x" not in cols else None,
                  stiffness_unit="Pa/m" if "F" in cols and _is_stress(units["F"]) else
-                 "1/m" if "mu" in cols and "N" not in cols and "F" not in orig else "N/m")
+                 "1/m" if mu_note and "N" not in cols else "N/m")
     condition(out)
     return out
 
@@ -559,9 +556,9 @@ def check_fn(rec: Record, fn: float, what: str, fix: str) -> None:
     if fn * span < 4:
         _fail(f"{what}: the record ({span:.4g} s) spans fewer than 4 natural periods; check {fix} (and the time "
               f"column's unit)")
-    dt = float(rec.t[1] - rec.t[0])
-    if fn * dt > 0.2:
-        _fail(f"{what}: the record has only {1 / (fn * dt):.1f} samples per natural period; at least 5 are needed")
+    if fn * rec.dt > 0.2:
+        _fail(f"{what}: the record has only {1 / (fn * rec.dt):.1f} samples per natural period; at least 5 are "
+              f"needed")
 
 
 def record_from_trc_deck(path, v0: float | None) -> tuple[Record, float]:

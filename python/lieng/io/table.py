@@ -171,7 +171,7 @@ def _header_after_preamble(rows, content) -> int:
     # a header has no number in it (a data row with a word in it is a bad row, named as such)
     for c in re.split(r"[,;\t]|\s+", rows[content[h]].strip()):
         try:
-            float(_unquote(c).replace(",", "."))
+            _number(_unquote(c), True)
             return 0
         except ValueError:
             pass
