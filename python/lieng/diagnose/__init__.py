@@ -24,7 +24,7 @@ from lieng.diagnose.decide import ALPHA, decide, fn_needed, misfit, null_replica
 from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics
 from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import y_on_motion
-from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset
+from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
 from lieng.diagnose.segment import estimate_fn, find_cycles, prepare, slip_seconds
 
@@ -58,6 +58,10 @@ class Diagnosis:
     effects : list of dict
         Every effect named: name, effect size and interval, p, gain and its
         interval.
+    detected : list of dict
+        Effects significant and above their margin whose extension does not
+        predict the held-out cycles better than the baseline: the same keys
+        and ``why_not_named``.  Not named.
     evidence : dict
         Per candidate: statistic, null mean and spread, z, p, significant,
         named, margin.
@@ -68,6 +72,7 @@ class Diagnosis:
     effect: str
     reason: str
     effects: list = field(default_factory=list)
+    detected: list = field(default_factory=list)
     evidence: dict = field(default_factory=dict)
     goodness: dict = field(default_factory=dict)
     sliding: dict = field(default_factory=dict)
@@ -92,7 +97,7 @@ class Diagnosis:
     def to_json(self) -> dict:
         d = {"effect": self.effect, "reason": self.reason, "gain": self.gain, "gain_interval_90": self.gain_interval,
              "baseline_error": self.baseline_error, "extended_error": self.extended_error, "metric": METRIC,
-             "effects": self.effects, "evidence": self.evidence, "goodness_of_fit": self.goodness,
+             "effects": self.effects, "detected": self.detected, "evidence": self.evidence, "goodness_of_fit": self.goodness,
              "sliding": self.sliding,
              "calibration": {"method": "parametric bootstrap of the fitted baseline (fn drawn within its "
                                        "uncertainty, noise at the record's level); Holm over the candidates",
@@ -399,7 +404,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0
         r = rows[k]
-        fitted[k] = (ext, g, imp)
+        fitted[k] = (ext, g, imp, bool(cands))
         effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
                                 "p": r["p"], "z": r["z"], "gain": g["gain"], "gain_interval_90": g["interval"],
                                 "held_out_error_baseline": g["e0"], "held_out_error_extended": g["e1"],
@@ -409,6 +414,20 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                                  "none available")}))
     rivals(pr, base, fitted, fn_used, u_fn, st, rows, named, effects, notes, rec.y_is_force, arcs, aux.get("ylow"),
             replicates, budget)
+    # named = detected and confirmed by prediction: an extension that does not predict the held-out cycles
+    # better than the baseline leaves the effect detected, not named (a load read from a normal force is
+    # its own evidence)
+    detected = []
+    for e in list(effects):
+        k = e["effect"]
+        why = unconfirmed(k, fitted[k][1], fitted[k][3], direct=(k == "load_variation" and rec.y_is_force))
+        if why is None:
+            continue
+        rows[k]["named"] = False
+        rows[k]["not_confirmed"] = why
+        named.remove(k)
+        effects.remove(e)
+        detected.append({**e, "why_not_named": why})
     # the primary effect: the one whose extension explains most of the training part
     named.sort(key=lambda k: -fitted[k][2])
     if "load_variation" in named and "twin_branch" in named:
@@ -420,6 +439,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     primary_ext, primary_gain = (fitted[named[0]][0], fitted[named[0]][1]) if named else (base, None)
     g0 = primary_gain or gain_folds(pr, c, fn_used, [(p[2], p[3], m[0], m[0]) for p, m in zip(parts, fold_models)],
                                     aux.get("ylow"))
+    det = "; ".join(f"{e['effect']} is significant (size {e['effect_size']:+.3g}, margin {MARGIN[e['effect']]}, "
+                    f"p = {e['p']:.2g}) but {e['why_not_named']}" for e in detected)
     if named:
         effect = named[0]
         reason = "; ".join(f"{k}: size {rows[k]['effect_size']:+.3g} (margin {MARGIN[k]}), p = {rows[k]['p']:.2g}"
@@ -429,6 +450,11 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         reason = ("the baseline misses beyond its noise and no candidate accounts for it: " +
                   "; ".join(f"{k} {v:.3g} in the record against {m:.3g} in the baseline's replicates"
                             for k, v, m in misfit(aux["gof"], null)))
+        if detected:
+            reason += "; " + det
+    elif detected:
+        effect = "none"
+        reason = "no effect named: " + det
     else:
         effect = "none"
         best = min((k for k in CANDIDATES if rows[k]["applicable"]), key=lambda k: rows[k]["p"], default=None)
@@ -444,7 +470,10 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                                    "replicates_sd": float(np.std(null[k])) if null[k].size > 1 else None}
                                for k in aux["gof"]}
     gof.update(creep)
-    return Diagnosis(effect=effect, reason=reason, effects=effects, evidence=_finite(rows), goodness=_finite(gof),
+    if named and detected:
+        notes.append("not named: " + det)
+    return Diagnosis(effect=effect, reason=reason, effects=effects, detected=detected, evidence=_finite(rows),
+                     goodness=_finite(gof),
                      fn=fn_used, fn_source=src, fn_uncertainty=u_fn,
                      fn_data=fd, fn_data_se=fse, baseline=base, extended=primary_ext,
                      baseline_error=g0["e0"], extended_error=g0["e1"], gain=g0["gain"] if named else 0.0,

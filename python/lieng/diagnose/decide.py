@@ -28,7 +28,10 @@ fitted extension, at the level Holm gave it; see :func:`rivals`).
 An effect is **named** when it is significant and its size S - m0 is at
 least the relevance margin stated in
 :data:`.evidence.MARGIN` (and at most the bound its own model allows,
-:data:`.evidence.UPPER`).
+:data:`.evidence.UPPER`), and its nested extension then predicts the held-out
+cycles better than the baseline (:func:`.extend.unconfirmed`: the gain's
+90 % interval above 0); one that passes the first two tests and not the third
+is reported as detected, not named.
 """
 
 from __future__ import annotations

@@ -50,7 +50,7 @@ from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, lowpass
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
 
-__all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds"]
+__all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds", "unconfirmed"]
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles (the record's last 30 % with models fitted on its "
@@ -478,6 +478,31 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
     g = float(np.clip(g, -1e6, 1.0))
     return dict(e0=e0, e1=e1, gain=g, interval=[float(np.clip(v, -1e6, 1.0)) for v in iv], x_base=x_base,
                 x_ext=x_ext, parts=len(parts))
+
+
+def unconfirmed(effect: str, g: dict, has_candidates: bool, direct: bool = False) -> str | None:
+    """Why a significant effect is not confirmed by prediction, or None.
+
+    An effect whose evidence is read through the model (the slips' shape,
+    the peaks, the sticks) is **named** only when its nested extension also
+    predicts the held-out cycles better than the baseline: the lower end of
+    the gain's 90 % interval (``g`` from :func:`gain_folds`) above 0 (a
+    one-sided 5 % test that the extension does not help).  The test adds to
+    the calibrated detection (:func:`.decide.decide`) and can only lower its
+    false-alarm rate.  Not applied (None) when the effect is measured
+    directly (``direct``: a normal force that varies with the motion is its
+    own evidence, however little the extension gains on a baseline whose
+    characteristic already carries it), when no extension exists for it
+    (``has_candidates`` false) or when no held-out part could be judged."""
+    if direct or not has_candidates or not g.get("parts"):
+        return None
+    lo, hi = g["interval"]
+    if lo > 0.0:
+        return None
+    if g["e1"] == g["e0"]:
+        return "no extension beats the baseline on the training part"
+    return (f"its extension does not predict the held-out cycles better than the baseline (gain {g['gain']:+.2f}, "
+            f"90 % interval {lo:+.2f} to {hi:+.2f})")
 
 
 #: the parameter each extension scales (refined on the training error)

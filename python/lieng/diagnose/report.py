@@ -32,7 +32,7 @@ def summary_lines(d, source: str) -> list:
     """The terminal summary (also the head of report.md)."""
     gi = d.gain_interval or (None, None)
     out = [f"{source}: effect {d.effect}" + (f"; gain {_f(d.gain, '.2f')} (90 % interval {_f(gi[0], '.2f')} to "
-                                              f"{_f(gi[1], '.2f')})" if d.effect not in ("none", "no_stick_slip")
+                                              f"{_f(gi[1], '.2f')})" if d.effect not in ("none", "no_stick_slip", "unexplained")
                                               else "")]
     out.append(f"  {d.reason}")
     if d.effect != "no_stick_slip":
@@ -43,6 +43,16 @@ def summary_lines(d, source: str) -> list:
     for n in d.notes:
         out.append(f"  note: {n}")
     return out
+
+
+def _effect_row(e: dict) -> str:
+    """One effect's row of the gains table."""
+    iv = e.get("interval_95") or [None, None]
+    gi = e.get("gain_interval_90") or [None, None]
+    return (f"| {e['effect']} | {_f(e['effect_size'], '+.4g')} | {_f(iv[0], '+.3g')} to {_f(iv[1], '+.3g')} | "
+            f"{_f(e['p'], '.2g')} | {_f(e.get('held_out_error_baseline'), '.3g')} | "
+            f"{_f(e.get('held_out_error_extended'), '.3g')} | {_f(e['gain'], '.3f')} | {_f(gi[0], '.2f')} to "
+            f"{_f(gi[1], '.2f')} |")
 
 
 def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
@@ -57,8 +67,9 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
         lines += ["## Evidence", "",
                   "Each statistic against its distribution under the fitted baseline (parametric bootstrap, "
                   f"{d.n_replicates} replicates; fn drawn within its uncertainty); p one-sided for effects with a "
-                  "direction; Holm over the candidates at family-wise 0.05; named = significant and at least the "
-                  "relevance margin.", "",
+                  "direction; Holm over the candidates at family-wise 0.05; named = significant, at least the "
+                  "relevance margin and confirmed by prediction (its extension's held-out gain above 0 at 90 %); "
+                  "detected = the first two without the third.", "",
                   "| candidate | statistic | null mean | null sd | record se | effect size | z | p | margin | named |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
         for k in CANDIDATES:
@@ -69,7 +80,7 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
             lines.append(f"| {k} | {_f(r['statistic'], '.4g')} | {_f(r['null_mean'], '.4g')} | "
                          f"{_f(r['null_sd'], '.3g')} | {_f(r['se'] or 0, '.3g')} | {_f(r['effect_size'], '+.4g')} | "
                          f"{_f(r['z'], '.2f')} | {_f(r['p'], '.2g')} | {r['margin']} | "
-                         f"{'**yes**' if r['named'] else 'no'} |")
+                         f"{'**yes**' if r['named'] else ('detected' if r.get('not_confirmed') else 'no')} |")
         lines.append("")
     if d.goodness:
         lines += ["## Goodness of fit of the baseline", "",
@@ -105,12 +116,17 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
                   "| effect | size | 95 % interval | p | held-out error: baseline | extended | gain | 90 % interval |",
                   "|---|---|---|---|---|---|---|---|"]
         for e in d.effects:
-            iv = e.get("interval_95") or [None, None]
-            gi = e.get("gain_interval_90") or [None, None]
-            lines.append(f"| {e['effect']} | {_f(e['effect_size'], '+.4g')} | {_f(iv[0], '+.3g')} to "
-                         f"{_f(iv[1], '+.3g')} | {_f(e['p'], '.2g')} | {_f(e.get('held_out_error_baseline'), '.3g')} | "
-                         f"{_f(e.get('held_out_error_extended'), '.3g')} | {_f(e['gain'], '.3f')} | {_f(gi[0], '.2f')} to "
-                         f"{_f(gi[1], '.2f')} |")
+            lines.append(_effect_row(e))
+        lines.append("")
+    if d.detected:
+        lines += ["## Detected, not named", "",
+                  "Significant and above their margin, but their extension does not predict the held-out cycles "
+                  "better than the baseline (the gain's 90 % interval not above 0): the record departs from the "
+                  "baseline there, and this model of the effect does not account for it.", "",
+                  "| effect | size | 95 % interval | p | held-out error: baseline | extended | gain | 90 % interval |",
+                  "|---|---|---|---|---|---|---|---|"]
+        for e in d.detected:
+            lines.append(_effect_row(e))
         lines.append("")
     if d.baseline is not None:
         b = d.baseline
@@ -143,7 +159,7 @@ def _plots(d, out: Path, source: str) -> None:
     ax.plot(t, x, color="k", lw=0.7, label="record")
     if d.plot.get("x_base") is not None:
         ax.plot(t, d.plot["x_base"], color="C0", lw=0.7, label="baseline (thesis 1-DoF)")
-    if d.effect not in ("none", "no_stick_slip") and d.plot.get("x_ext") is not None:
+    if d.effect not in ("none", "no_stick_slip", "unexplained") and d.plot.get("x_ext") is not None:
         ax.plot(t, d.plot["x_ext"], color="C3", lw=0.7, label=f"extended ({d.effect})")
     ax.plot(t[c.peak_i], x[c.peak_i], "v", color="C1", ms=4, label="slip starts (peaks)")
     ax.axvline(d.plot["tsplit"], color="0.5", ls="--", lw=0.8)
