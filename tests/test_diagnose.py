@@ -788,3 +788,37 @@ def test_a_long_smoothing_window_is_convolved_by_fft_to_scipys_numbers():
     for d in (0, 1, 2):
         ref = savgol_filter(x, w, 3, deriv=d, delta=dt)
         assert np.max(np.abs(smooth(x, dt, fn, deriv=d) - ref)) < 1e-12 * np.max(np.abs(ref))
+
+
+def test_an_effect_is_named_only_when_its_extension_predicts_the_held_out_cycles():
+    """Detection and confirmation: a significant effect is named only when
+    the lower end of its extension's held-out gain interval (90 %) is above
+    0; otherwise it is reported as detected, with why (diagnosis.json,
+    report.md), and the answer is not that effect."""
+    from lieng.diagnose import Diagnosis
+    from lieng.diagnose.extend import unconfirmed
+    from lieng.diagnose.report import write_outputs
+
+    g = dict(parts=2, e0=0.04, e1=0.03, gain=0.25, interval=[0.05, 0.4])
+    assert unconfirmed("static_ageing", g, True) is None
+    g = dict(g, interval=[-0.1, 0.4])
+    why = unconfirmed("static_ageing", g, True)
+    assert why and "-0.10" in why and "held-out" in why
+    assert unconfirmed("load_variation", g, True, direct=True) is None        # a measured normal force
+    assert unconfirmed("direction_asymmetry", g, False) is None              # no extension to test
+    assert unconfirmed("static_ageing", dict(g, parts=0), True) is None      # nothing held out
+    same = dict(parts=2, e0=0.04, e1=0.04, gain=0.0, interval=[0.0, 0.0])
+    assert "training" in unconfirmed("twin_branch", same, True)
+
+    det = {"effect": "friction_drift", "effect_size": 0.3, "interval_95": [0.1, 0.5], "p": 0.004, "z": 2.6,
+           "gain": -0.2, "gain_interval_90": [-0.3, -0.1], "held_out_error_baseline": 0.05,
+           "held_out_error_extended": 0.06, "why_not_named": why}
+    d = Diagnosis(effect="none", reason="no effect named", detected=[det])
+    import tempfile
+    from pathlib import Path
+    with tempfile.TemporaryDirectory() as tmp:
+        write_outputs(d, tmp, "rec.csv", plots=False)
+        js = json.loads((Path(tmp) / "diagnosis.json").read_text())
+        md = (Path(tmp) / "report.md").read_text()
+    assert js["effects"] == [] and js["detected"][0]["effect"] == "friction_drift"
+    assert "## Detected, not named" in md and "| friction_drift |" in md

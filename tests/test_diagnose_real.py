@@ -84,6 +84,13 @@ def test_paper_on_paper_spring_slider(tmp_path, v):
     d, out = _run(tmp_path, COLAS / f"k168Nm_v{v}.csv", "--stiffness", "168", "--v0", v / 1000, "--fn", "11.77")
     named = {e["effect"] for e in d["effects"]}
     assert "load_variation" not in named                      # no normal channel
+    # named = detected and confirmed: an effect with a fitted extension predicts the held-out cycles better
+    for e in d["effects"]:
+        if e["extension"] == "fitted":
+            assert e["gain_interval_90"][0] > 0, e
+    for e in d["detected"]:
+        assert e["effect"] not in named and e["why_not_named"]
+        assert d["evidence"][e["effect"]]["named"] is False and d["evidence"][e["effect"]]["not_confirmed"]
     assert d["evidence"]["load_variation"]["applicable"] is False
     for f in ("trace.png", "characteristic.png", "residuals.png"):
         assert (out / f).exists()
