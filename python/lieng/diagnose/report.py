@@ -107,27 +107,22 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
                   f"{np.median(lv):.4g} mm, spread {np.std(lv):.3g} mm",
                   f"* drive travel until x is 90 % of the way to that level after a reversal: median "
                   f"{np.median(tr):.4g} mm" if tr else "* no presliding ramp measured", ""]
-    if d.effects:
-        lines += ["## Named effects and gains", "", f"Metric: {METRIC}.", "",
+    sections = (("Named effects and gains", d.effects,
+                 [f"Metric: {METRIC}.", "",
                   "The held-out errors are in the metric's units (fractions of the drop D and of the mean period): "
                   "a baseline that already predicts the held-out cycles within the record's own scatter leaves "
                   "an extension nothing to gain, however real the effect (a load that follows the motion the same "
-                  "way in every cycle is carried by the characteristic the baseline reads from the record).", "",
-                  "| effect | size | 95 % interval | p | held-out error: baseline | extended | gain | 90 % interval |",
-                  "|---|---|---|---|---|---|---|---|"]
-        for e in d.effects:
-            lines.append(_effect_row(e))
-        lines.append("")
-    if d.detected:
-        lines += ["## Detected, not named", "",
-                  "Significant and above their margin, but their extension does not predict the held-out cycles "
+                  "way in every cycle is carried by the characteristic the baseline reads from the record)."]),
+                ("Detected, not named", d.detected,
+                 ["Significant and above their margin, but their extension does not predict the held-out cycles "
                   "better than the baseline (the gain's 90 % interval not above 0): the record departs from the "
-                  "baseline there, and this model of the effect does not account for it.", "",
+                  "baseline there, and this model of the effect does not account for it."]))
+    for title, rows, intro in sections:
+        if not rows:
+            continue
+        lines += [f"## {title}", "", *intro, "",
                   "| effect | size | 95 % interval | p | held-out error: baseline | extended | gain | 90 % interval |",
-                  "|---|---|---|---|---|---|---|---|"]
-        for e in d.detected:
-            lines.append(_effect_row(e))
-        lines.append("")
+                  "|---|---|---|---|---|---|---|---|", *map(_effect_row, rows), ""]
     if d.baseline is not None:
         b = d.baseline
         lines += ["## Baseline (the thesis's 1-DoF model, fitted on the training part)", "",
