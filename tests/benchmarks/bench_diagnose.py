@@ -137,7 +137,7 @@ def run_one(truth, fn_uncertainty=None):
                                                           "effect_size", "named", "withheld", "fn_band")}
                                for k, r in d.evidence.items()},
                   "warnings": d.warnings, "fn_used": d.fn, "fn_source": d.fn_source, "cycles": d.n_cycles,
-                  "effects": d.effects, "goodness": d.goodness}
+                  "effects": d.effects, "detected": d.detected, "goodness": d.goodness}
     except LiengInputError as e:
         eff, g, named, err, detail = "error", 0.0, [], str(e), {}
     except Exception as e:  # noqa: BLE001 - a crash is a result here
