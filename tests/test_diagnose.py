@@ -800,15 +800,15 @@ def test_an_effect_is_named_only_when_its_extension_predicts_the_held_out_cycles
     from lieng.diagnose.report import write_outputs
 
     g = dict(parts=2, e0=0.04, e1=0.03, gain=0.25, interval=[0.05, 0.4])
-    assert unconfirmed("static_ageing", g, True) is None
+    assert unconfirmed(g, True) is None
     g = dict(g, interval=[-0.1, 0.4])
-    why = unconfirmed("static_ageing", g, True)
+    why = unconfirmed(g, True)
     assert why and "-0.10" in why and "held-out" in why
-    assert unconfirmed("load_variation", g, True, direct=True) is None        # a measured normal force
-    assert unconfirmed("direction_asymmetry", g, False) is None              # no extension to test
-    assert unconfirmed("static_ageing", dict(g, parts=0), True) is None      # nothing held out
+    assert unconfirmed(g, True, direct=True) is None        # a measured normal force
+    assert unconfirmed(g, False) is None              # no extension to test
+    assert unconfirmed(dict(g, parts=0), True) is None      # nothing held out
     same = dict(parts=2, e0=0.04, e1=0.04, gain=0.0, interval=[0.0, 0.0])
-    assert "training" in unconfirmed("twin_branch", same, True)
+    assert "training" in unconfirmed(same, True)
 
     det = {"effect": "friction_drift", "effect_size": 0.3, "interval_95": [0.1, 0.5], "p": 0.004, "z": 2.6,
            "gain": -0.2, "gain_interval_90": [-0.3, -0.1], "held_out_error_baseline": 0.05,

@@ -420,7 +420,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     detected = []
     for e in list(effects):
         k = e["effect"]
-        why = unconfirmed(k, fitted[k][1], fitted[k][3], direct=(k == "load_variation" and rec.y_is_force))
+        why = unconfirmed(fitted[k][1], fitted[k][3], direct=(k == "load_variation" and rec.y_is_force))
         if why is None:
             continue
         rows[k]["named"] = False

@@ -480,7 +480,7 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
                 x_ext=x_ext, parts=len(parts))
 
 
-def unconfirmed(effect: str, g: dict, has_candidates: bool, direct: bool = False) -> str | None:
+def unconfirmed(g: dict, has_candidates: bool, direct: bool = False) -> str | None:
     """Why a significant effect is not confirmed by prediction, or None.
 
     An effect whose evidence is read through the model (the slips' shape,

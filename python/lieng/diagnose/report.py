@@ -28,11 +28,15 @@ def _f(v, spec: str) -> str:
     return format(v, spec) if math.isfinite(v) else "n/a"
 
 
+#: the answers that name no effect (no gain or extended trace to show)
+NO_EFFECT = ("none", "no_stick_slip", "unexplained")
+
+
 def summary_lines(d, source: str) -> list:
     """The terminal summary (also the head of report.md)."""
     gi = d.gain_interval or (None, None)
     out = [f"{source}: effect {d.effect}" + (f"; gain {_f(d.gain, '.2f')} (90 % interval {_f(gi[0], '.2f')} to "
-                                              f"{_f(gi[1], '.2f')})" if d.effect not in ("none", "no_stick_slip", "unexplained")
+                                              f"{_f(gi[1], '.2f')})" if d.effect not in NO_EFFECT
                                               else "")]
     out.append(f"  {d.reason}")
     if d.effect != "no_stick_slip":
@@ -154,7 +158,7 @@ def _plots(d, out: Path, source: str) -> None:
     ax.plot(t, x, color="k", lw=0.7, label="record")
     if d.plot.get("x_base") is not None:
         ax.plot(t, d.plot["x_base"], color="C0", lw=0.7, label="baseline (thesis 1-DoF)")
-    if d.effect not in ("none", "no_stick_slip", "unexplained") and d.plot.get("x_ext") is not None:
+    if d.effect not in NO_EFFECT and d.plot.get("x_ext") is not None:
         ax.plot(t, d.plot["x_ext"], color="C3", lw=0.7, label=f"extended ({d.effect})")
     ax.plot(t[c.peak_i], x[c.peak_i], "v", color="C1", ms=4, label="slip starts (peaks)")
     ax.axvline(d.plot["tsplit"], color="0.5", ls="--", lw=0.8)

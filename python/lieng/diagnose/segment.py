@@ -151,7 +151,7 @@ def _savgol_fft(x, w: int, order: int, deriv: int, dt: float):
     h = w // 2
     tt = np.arange(w, dtype=float)
     for sl, out in ((slice(0, w), slice(0, h)), (slice(x.size - w, x.size), slice(x.size - h, x.size))):
-        co = np.polyder(np.polyfit(tt, x[sl], order), deriv) if deriv else np.polyfit(tt, x[sl], order)
+        co = np.polyder(np.polyfit(tt, x[sl], order), deriv)
         ev = tt[:h] if out.start == 0 else tt[w - h:]
         y[out] = np.polyval(co, ev) / dt ** deriv
     return y
