@@ -822,3 +822,46 @@ def test_an_effect_is_named_only_when_its_extension_predicts_the_held_out_cycles
         md = (Path(tmp) / "report.md").read_text()
     assert js["effects"] == [] and js["detected"][0]["effect"] == "friction_drift"
     assert "## Detected, not named" in md and "| friction_drift |" in md
+
+
+def test_each_prediction_starts_from_the_stick_line_not_a_rebound_below_it():
+    """A sawtooth whose arrests rebound (a second mode: after every trough
+    x rings back up, 0.1 D below the stick line at the trough and decaying
+    as exp(-3 fn t)): the state each prediction starts from is the stick
+    line's level at the trough, read against the drive's travel also where
+    the drive steps within the stick (geometry of the trace, plain NumPy);
+    on the plain sawtooth it is the trough."""
+    from lieng.diagnose.extend import stick_start
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    fn, dt = 10.0, 0.001
+    wn = 2 * math.pi * fn
+    g = np.random.default_rng(5)
+    t_list, x_list, v_list = [], [], []
+    t = 0.0
+    for k in range(12):
+        v0 = 1.0 if k % 2 else 2.0
+        n_st = int(0.5 / v0 / dt)                            # stick: the line rises from -0.25 to 0.25
+        vs = np.where(np.arange(n_st) < n_st // 3, 0.5 * v0, v0) if k == 5 else np.full(n_st, v0)
+        line = -0.25 + np.r_[0.0, np.cumsum(vs[:-1] * dt)]
+        for i in range(n_st):
+            t_list.append(t); x_list.append(line[i]); v_list.append(vs[i]); t += dt
+        n_sl = int(0.5 / fn / dt)                            # slip: half a natural period
+        for i in range(n_sl):
+            t_list.append(t); x_list.append(0.25 * math.cos(wn * i * dt)); v_list.append(v0); t += dt
+    x0 = np.array(x_list)
+    pr0 = prepare(record_from_arrays(np.array(t_list), x0 + 0.001 * g.standard_normal(x0.size), np.array(v_list)))
+    c = find_cycles(pr0, fn)
+    D = c.amplitude(pr0.x)
+    ks = np.flatnonzero(c.next_ok)
+    assert ks.size >= 8
+    for k in ks:
+        assert stick_start(pr0, c, int(k)) == pytest.approx(pr0.x[c.trough_i[k]], abs=0.02 * D)
+    x = x0.copy()
+    for i in c.trough_i:                                     # the rebound: below the line, ringing back up
+        tt = pr0.t[i:] - pr0.t[i]
+        x[i:] -= 0.1 * D * np.exp(-3 * fn * tt) * np.cos(2 * np.pi * 4 * fn * tt)
+    pr0.x = x
+    for k in ks:
+        assert stick_start(pr0, c, int(k)) == pytest.approx(-0.25, abs=0.01 * D)
+        assert pr0.x[c.trough_i[k]] < -0.25 - 0.08 * D
