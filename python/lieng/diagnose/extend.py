@@ -134,34 +134,6 @@ def _slip(t, x, i0: int, i1: int, tau):
     return h[0], np.interp(tt, t, x) - h[1]
 
 
-def stick_start(pr: Prepared, c: Cycles, k: int) -> float:
-    """The record's state at the start of stick ``k`` (trough ``k`` to peak
-    ``k + 1``): the stick line's level at the trough, x read against the
-    drive's travel over the stick's middle (a quarter to seven eighths of
-    it, the part :func:`.segment.stick_ratios` reads).  A rig that rings or
-    rebounds after the arrest (a second mode, a contact lag) puts its trough
-    below the level the stick then rises from; the 1-DoF slider arrests at
-    that level.  The trough itself when the stick is too short for a line
-    (fewer than 8 samples) or its line does not rise with the drive."""
-    a, b = int(c.trough_i[k]), int(c.peak_i[k + 1])
-    m = b - a
-    seg = np.arange(a + m // 4, a + (7 * m) // 8)
-    x0 = float(pr.x[a])
-    if seg.size < 8:
-        return x0
-    vd = pr.vd[a:seg[-1] + 1]
-    travel = np.r_[0.0, np.cumsum(0.5 * (vd[1:] + vd[:-1]) * pr.dt)]
-    X = travel[seg - a]
-    if not np.ptp(X) > 0:
-        return x0
-    slope, level = np.polyfit(X, pr.x[seg], 1)
-    top = float(pr.x[b])
-    # a stick line that rises with the drive, its level between the trough and the peak
-    if not (slope > 0 and x0 - 0.5 * (top - x0) <= level <= top):
-        return x0
-    return float(level)
-
-
 def _msq(a) -> float:
     a = np.asarray(a, float)
     a = a[np.isfinite(a)]
@@ -173,8 +145,8 @@ class Judge:
 
     The model is judged **one cycle ahead** from the record's own state
     (ch. 2.3: the baseline started from the record's state): from each
-    record trough (the slider just stuck, at the level of the stick line
-    there, :func:`stick_start`) the model runs on the record's drive and clock to its next slip, and its
+    record trough (the slider just stuck, at the record's displacement) the
+    model runs on the record's drive and clock to its next slip, and its
     predicted stick time (to the next slip's halfway crossing, over the mean
     period), peak and trough (over D) are compared with the record's, plus
     the mean slip waveform around the halfway crossing of each predicted
@@ -200,8 +172,6 @@ class Judge:
         i0 = c.trough_i[k]
         span = c.trough_i[k + 1] - i0
         self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, k)]
-        # each prediction starts from the stick line's level at the trough (:func:`stick_start`)
-        self.start = [stick_start(pr, c, int(j)) for j in k]
         t, x = pr.t, pr.x
         self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
         slips = [_slip(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k]
@@ -227,7 +197,7 @@ class Judge:
         pred = np.empty_like(self.rec)
         waves = []
         for row, sl in enumerate(self.slices):
-            xs, _, state = run_slice(pr, p, self.fn, sl, self.start[row], self.ylow)
+            xs, _, state = run_slice(pr, p, self.fn, sl, float(pr.x[sl.start]), self.ylow)
             slip = np.flatnonzero(state == 0)
             if slip.size == 0:
                 pred[row] = ((t[sl.stop - 1] - t[sl.start]) / self.P, xs[-1] / self.D, xs[-1] / self.D)
