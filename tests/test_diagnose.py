@@ -822,3 +822,99 @@ def test_an_effect_is_named_only_when_its_extension_predicts_the_held_out_cycles
         md = (Path(tmp) / "report.md").read_text()
     assert js["effects"] == [] and js["detected"][0]["effect"] == "friction_drift"
     assert "## Detected, not named" in md and "| friction_drift |" in md
+
+
+def _sawtooth_sticks(vs_of, fn=10.0, dt=0.001, n=12):
+    """A sawtooth whose stick lines rise from -0.25 to 0.25 on the drive
+    ``vs_of(k, m)`` (stick k, m samples) and whose slips are half-cosines;
+    returns (t, x, drive)."""
+    wn = 2 * math.pi * fn
+    t_list, x_list, v_list = [], [], []
+    t = 0.0
+    for k in range(n):
+        v0 = 1.0 if k % 2 else 2.0
+        vs = vs_of(k, v0, int(0.5 / v0 / dt))
+        line = -0.25 + np.r_[0.0, np.cumsum(vs[:-1] * dt)]
+        m = int(np.searchsorted(line, 0.25))
+        for i in range(m):
+            t_list.append(t); x_list.append(line[i]); v_list.append(vs[i]); t += dt
+        for i in range(int(0.5 / fn / dt)):
+            t_list.append(t); x_list.append(0.25 * math.cos(wn * i * dt)); v_list.append(v0); t += dt
+    return np.array(t_list), np.array(x_list), np.array(v_list)
+
+
+def test_each_prediction_starts_from_the_stick_line_not_a_rebound_below_it():
+    """A sawtooth whose arrests rebound (a second mode: after every trough
+    x rings back up, 0.1 D below the stick line at the trough and decaying
+    as exp(-3 fn t)): the state each prediction starts from is the stick
+    line's level at the trough, read against the drive's travel also where
+    the drive steps up within the stick; the trough itself on the plain
+    sawtooth and where the drive holds within the stick (x may relax in a
+    hold).  A drive modulated in truth but recorded constant: the line is
+    read on the drive of the model that carries the modulation (geometry of
+    the trace, plain NumPy)."""
+    from lieng.diagnose.baseline import Params
+    from lieng.diagnose.extend import stick_start
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    fn = 10.0
+    g = np.random.default_rng(5)
+
+    def drive(k, v0, n):
+        vs = np.full(2 * n, v0)
+        if k == 5:                                           # a step up within the stick
+            vs[:n // 3] = 0.7 * v0
+        if k == 7:                                           # a hold within the stick
+            vs[n // 2:n // 2 + n // 4] = 0.0
+        return vs
+
+    t, x0, vd = _sawtooth_sticks(drive, fn)
+    pr0 = prepare(record_from_arrays(t, x0 + 0.001 * g.standard_normal(x0.size), vd))
+    c = find_cycles(pr0, fn)
+    D = c.amplitude(pr0.x)
+    ks = np.flatnonzero(c.next_ok)
+    assert ks.size >= 8
+    for k in ks:
+        assert stick_start(pr0, c, int(k)) == pytest.approx(pr0.x[c.trough_i[k]], abs=0.02 * D)
+    x = x0.copy()
+    for i in c.trough_i:                                     # the rebound: below the line, ringing back up
+        tt = pr0.t[i:] - pr0.t[i]
+        x[i:] -= 0.1 * D * np.exp(-3 * fn * tt) * np.cos(2 * np.pi * 4 * fn * tt)
+    pr0.x = x
+    held = 0
+    for k in ks:
+        a, b = c.trough_i[k], c.peak_i[k + 1]
+        assert pr0.x[a] < -0.25 - 0.08 * D
+        if np.min(vd[a:b + 1]) == 0.0:                       # the hold: the trough
+            held += 1
+            assert stick_start(pr0, c, int(k)) == pr0.x[a]
+        else:
+            assert stick_start(pr0, c, int(k)) == pytest.approx(-0.25, abs=0.01 * D)
+    assert held == 1
+    # the drive modulated by 40 % at 0.37 Hz, recorded as its mean
+    p = Params(fs=1.0, sg=np.zeros(2), fg=np.zeros(2), drv_a=0.4, drv_f=0.37, drv_ph=0.3)
+    # the sticks rise on the modulated drive at their own clock
+    t_list, x_list, v_list, tnow = [], [], [], 0.0
+    for k in range(12):
+        v0 = 1.0 if k % 2 else 2.0
+        line = [-0.25]
+        while line[-1] < 0.25:
+            t_list.append(tnow); x_list.append(line[-1]); v_list.append(v0)
+            line.append(line[-1] + v0 * (1 + 0.4 * math.sin(2 * math.pi * 0.37 * tnow + 0.3)) * 0.001)
+            tnow += 0.001
+        for i in range(50):
+            t_list.append(tnow); x_list.append(0.25 * math.cos(2 * math.pi * fn * i * 0.001)); v_list.append(v0)
+            tnow += 0.001
+    prm = prepare(record_from_arrays(np.array(t_list), np.array(x_list), np.array(v_list)))
+    cm = find_cycles(prm, fn)
+    xm = prm.x.copy()
+    for i in cm.trough_i:
+        tt = prm.t[i:] - prm.t[i]
+        xm[i:] -= 0.1 * D * np.exp(-3 * fn * tt) * np.cos(2 * np.pi * 4 * fn * tt)
+    prm.x = xm
+    km = np.flatnonzero(cm.next_ok)
+    assert km.size >= 8
+    for k in km:
+        assert stick_start(prm, cm, int(k), p) == pytest.approx(-0.25, abs=0.01 * D)
+    # on the recorded (constant) drive the line leans: the start is off
+    assert max(abs(stick_start(prm, cm, int(k)) + 0.25) for k in km) > 0.02 * D

@@ -139,6 +139,15 @@ def simulate(pr: Prepared, p: Params, fn: float, ylow=None, x0=None):
     return np.concatenate(xs), np.concatenate(vs), np.concatenate(ss)
 
 
+def model_drive(pr: Prepared, p: Params, sl: slice):
+    """The drive velocity the model ``p`` runs on over the samples ``sl``:
+    the record's, modulated as ``p`` says (``drv_a``)."""
+    vdd = pr.vd[sl].astype(float).copy()
+    if p.drv_a:
+        vdd = vdd * (1.0 + p.drv_a * _sin(pr.t[sl], p.drv_f, p.drv_ph))
+    return vdd
+
+
 def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=None):
     """The slider on the samples ``sl`` of the record's grid (within one
     stroke), started in stick at the displacement ``start``: (x, v, state)."""
@@ -151,9 +160,7 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     sg = np.ascontiguousarray(p.sg, float)
     fg = np.ascontiguousarray(p.fg, float)
     t = pr.t[sl]
-    vdd = pr.vd[sl].astype(float).copy()
-    if p.drv_a:
-        vdd = vdd * (1.0 + p.drv_a * _sin(t, p.drv_f, p.drv_ph))
+    vdd = model_drive(pr, p, sl)
     load = np.ones_like(t)
     if p.load_k and ylow is not None:
         load = load + p.load_k * (ylow[sl] - np.mean(ylow))

@@ -45,7 +45,8 @@ import math
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.baseline import Params, identify, model_y, pr_like, run_slice, simulate, slip_friction
+from lieng.diagnose.baseline import (Params, identify, model_drive, model_y, pr_like, run_slice, simulate,
+                                     slip_friction)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, lowpass
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
@@ -134,6 +135,43 @@ def _slip(t, x, i0: int, i1: int, tau):
     return h[0], np.interp(tt, t, x) - h[1]
 
 
+def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> float:
+    """The record's state at the start of stick ``k`` (trough ``k`` to peak
+    ``k + 1``): the stick line's level at the trough, x read against the
+    drive's travel over the stick's middle (a quarter to seven eighths of
+    it, the part :func:`.segment.stick_ratios` reads).  A rig that rings or
+    rebounds after the arrest (a second mode, a contact lag) puts its trough
+    below the level the stick then rises from; the 1-DoF slider arrests at
+    that level.  The travel is that of the drive the model ``p`` runs on
+    (:func:`.baseline.model_drive`: a modulated drive's own, so that a model
+    of the modulation reads the stick on its own drive); the record's drive
+    when ``p`` is None.  The trough itself when the stick is too short for a
+    line (fewer than 8 samples), when the record's drive holds or steps by
+    more than a factor 2 within it (its 10th percentile there below half
+    its 90th: x may relax in a hold) or when its line does not rise with
+    the drive."""
+    a, b = int(c.trough_i[k]), int(c.peak_i[k + 1])
+    m = b - a
+    seg = np.arange(a + m // 4, a + (7 * m) // 8)
+    x0 = float(pr.x[a])
+    if seg.size < 8:
+        return x0
+    lo_v, hi_v = np.percentile(pr.vd[a:b + 1], [10, 90])
+    if not lo_v > 0.5 * hi_v:
+        return x0     # a hold or a step within the stick: x may relax there, the line is not the state
+    vd = pr.vd[a:seg[-1] + 1] if p is None else model_drive(pr, p, slice(a, int(seg[-1]) + 1))
+    travel = np.r_[0.0, np.cumsum(0.5 * (vd[1:] + vd[:-1]) * pr.dt)]
+    X = travel[seg - a]
+    if not np.ptp(X) > 0:
+        return x0
+    slope, level = np.polyfit(X, pr.x[seg], 1)
+    top = float(pr.x[b])
+    # a stick line that rises with the drive, its level between the trough and the peak
+    if not (slope > 0 and x0 - 0.5 * (top - x0) <= level <= top):
+        return x0
+    return float(level)
+
+
 def _msq(a) -> float:
     a = np.asarray(a, float)
     a = a[np.isfinite(a)]
@@ -145,8 +183,8 @@ class Judge:
 
     The model is judged **one cycle ahead** from the record's own state
     (ch. 2.3: the baseline started from the record's state): from each
-    record trough (the slider just stuck, at the record's displacement) the
-    model runs on the record's drive and clock to its next slip, and its
+    record trough (the slider just stuck, at the level of the stick line
+    there, :func:`stick_start`) the model runs on the record's drive and clock to its next slip, and its
     predicted stick time (to the next slip's halfway crossing, over the mean
     period), peak and trough (over D) are compared with the record's, plus
     the mean slip waveform around the halfway crossing of each predicted
@@ -172,6 +210,10 @@ class Judge:
         i0 = c.trough_i[k]
         span = c.trough_i[k + 1] - i0
         self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, k)]
+        # each prediction starts from the stick line's level at the trough (:func:`stick_start`)
+        # (on the record's drive; a model with a modulated drive reads it on its own drive)
+        self.start = [stick_start(pr, c, int(j)) for j in k]
+        self._k = k
         t, x = pr.t, pr.x
         self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
         slips = [_slip(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k]
@@ -196,8 +238,9 @@ class Judge:
         t = pr.t
         pred = np.empty_like(self.rec)
         waves = []
+        starts = self.start if not p.drv_a else [stick_start(pr, self.c, int(j), p) for j in self._k]
         for row, sl in enumerate(self.slices):
-            xs, _, state = run_slice(pr, p, self.fn, sl, float(pr.x[sl.start]), self.ylow)
+            xs, _, state = run_slice(pr, p, self.fn, sl, starts[row], self.ylow)
             slip = np.flatnonzero(state == 0)
             if slip.size == 0:
                 pred[row] = ((t[sl.stop - 1] - t[sl.start]) / self.P, xs[-1] / self.D, xs[-1] / self.D)
