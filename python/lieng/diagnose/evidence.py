@@ -77,7 +77,7 @@ from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
 from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit, lowpass, position_anova,
                                      spectral_line, y_locked)
-from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_ratios
+from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_ratios, travel
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "lowpass"]
 
@@ -429,9 +429,9 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
             continue
         P = float(np.median(x[x.size // 2:]))
         x0 = float(np.median(x[:3]))
-        travel = np.concatenate([[0.0], np.cumsum(0.5 * (vd[1:] + vd[:-1]) * np.diff(t))])
+        tr = travel(vd, np.diff(t))
         k90 = np.flatnonzero((x - x0) >= 0.9 * (P - x0)) if P > x0 else np.array([], int)
-        L = float(travel[k90[0]]) if k90.size else math.nan
+        L = float(tr[k90[0]]) if k90.size else math.nan
         lv.append(P)
         trav.append(L)
         slope.append(0.9 * (P - x0) / L if L and L > 0 else math.nan)

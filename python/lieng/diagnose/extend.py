@@ -49,7 +49,7 @@ from lieng.diagnose.baseline import (Params, identify, model_drive, model_y, pr_
                                      slip_friction)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, lowpass
-from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
+from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
 
 __all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds", "unconfirmed"]
 
@@ -138,8 +138,8 @@ def _slip(t, x, i0: int, i1: int, tau):
 def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> float:
     """The record's state at the start of stick ``k`` (trough ``k`` to peak
     ``k + 1``): the stick line's level at the trough, x read against the
-    drive's travel over the stick's middle (a quarter to seven eighths of
-    it, the part :func:`.segment.stick_ratios` reads).  A rig that rings or
+    drive's travel over the stick's middle (:data:`.segment.STICK_PART`, the
+    part :func:`.segment.stick_ratios` reads).  A rig that rings or
     rebounds after the arrest (a second mode, a contact lag) puts its trough
     below the level the stick then rises from; the 1-DoF slider arrests at
     that level.  The travel is that of the drive the model ``p`` runs on
@@ -151,8 +151,7 @@ def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> flo
     its 90th: x may relax in a hold) or when its line does not rise with
     the drive."""
     a, b = int(c.trough_i[k]), int(c.peak_i[k + 1])
-    m = b - a
-    seg = np.arange(a + m // 4, a + (7 * m) // 8)
+    seg = stick_part(c, k)
     x0 = float(pr.x[a])
     if seg.size < 8:
         return x0
@@ -160,8 +159,7 @@ def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> flo
     if not lo_v > 0.5 * hi_v:
         return x0     # a hold or a step within the stick: x may relax there, the line is not the state
     vd = pr.vd[a:seg[-1] + 1] if p is None else model_drive(pr, p, slice(a, int(seg[-1]) + 1))
-    travel = np.r_[0.0, np.cumsum(0.5 * (vd[1:] + vd[:-1]) * pr.dt)]
-    X = travel[seg - a]
+    X = travel(vd, pr.dt)[seg - a]
     if not np.ptp(X) > 0:
         return x0
     slope, level = np.polyfit(X, pr.x[seg], 1)

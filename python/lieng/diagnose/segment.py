@@ -238,7 +238,7 @@ def prepare(rec: Record) -> Prepared:
     if len(st) > 1 or st[0].sign < 0:
         nb = sum(1 for s in st if s.sign < 0)
         notes.append(f"{len(st)} strokes ({len(st) - nb} forward, {nb} backward), each turned forward")
-    track = np.r_[0.0, np.cumsum(0.5 * (rec.vd[1:] + rec.vd[:-1]) * dt)]
+    track = travel(rec.vd, dt)
     pos = np.concatenate([track[s.i0:s.i1] for s in st])
     return Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
                     strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos)
@@ -489,7 +489,28 @@ def estimate_fn(p: Prepared, c: Cycles, fn_guess: float | None = None):
 STICK_LINE = 5.0
 
 
-def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875), lines_only: bool = False, index: bool = False):
+def travel(vd, dt):
+    """The drive's travel (mm) at each sample from its velocity ``vd``
+    (mm/s), by the trapezoid rule over the steps ``dt`` (s: one step, or the
+    n - 1 steps); 0 at the first sample."""
+    vd = np.asarray(vd, float)
+    return np.r_[0.0, np.cumsum(0.5 * (vd[1:] + vd[:-1]) * dt)]
+
+
+#: the part of a stick (trough to next peak) its line is read on: past the
+#: arrest's transient, before the creep that precedes the slip
+STICK_PART = (0.25, 0.875)
+
+
+def stick_part(c: Cycles, k: int, part=STICK_PART):
+    """The samples of the fraction ``part`` of stick ``k`` (trough ``k`` to
+    peak ``k + 1``)."""
+    lo, hi = int(c.trough_i[k]), int(c.peak_i[k + 1])
+    m = hi - lo
+    return np.arange(lo + int(m * part[0]), lo + int(m * part[1]))
+
+
+def stick_ratios(pr: Prepared, c: Cycles, part=STICK_PART, lines_only: bool = False, index: bool = False):
     """Per stick (trough to next peak, the fraction ``part`` of it): the time
     of its middle and the slope of x there over the mean drive (and, with
     ``index``, the stick's cycle, so that two parts of one stick can be
@@ -499,9 +520,7 @@ def stick_ratios(pr: Prepared, c: Cycles, part=(0.25, 0.875), lines_only: bool =
     drive step into another regime) is no stick."""
     tt, rr, kk = [], [], []
     for k in np.flatnonzero(c.next_ok):
-        lo, hi = c.trough_i[k], c.peak_i[k + 1]
-        m = hi - lo
-        seg = np.arange(lo + int(m * part[0]), lo + int(m * part[1]))
+        seg = stick_part(c, k, part)
         if seg.size < 5:
             continue
         vd = float(np.mean(pr.vd[seg]))
