@@ -918,3 +918,61 @@ def test_each_prediction_starts_from_the_stick_line_not_a_rebound_below_it():
         assert stick_start(prm, cm, int(k), p) == pytest.approx(-0.25, abs=0.01 * D)
     # on the recorded (constant) drive the line leans: the start is off
     assert max(abs(stick_start(prm, cm, int(k)) + 0.25) for k in km) > 0.02 * D
+
+
+
+def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, seconds=12.0, seed=0):
+    """A Coulomb slider whose load is modulated, N (1 + eps sin(2 pi f t)), f = r fn (the
+    static and the kinetic force both), stepped by semi-implicit Euler at 40 kHz (plain NumPy,
+    no lieng code), sampled at 2 kHz; ``sensor``: a line at f added to the recorded x (a
+    vibration of the sensor, not of the load)."""
+    g = np.random.default_rng(seed)
+    wn, w, h = 2 * math.pi * fn, 2 * math.pi * r * fn, 1.0 / 40000
+    n = int(seconds / h)
+    x, xd, stick = 0.3, v0, True
+    out = np.empty(n // 20)
+    for i in range(n):
+        t = i * h
+        load = 1.0 + eps * math.sin(w * t)
+        if stick:
+            x += v0 * h
+            if x >= fs * load:
+                stick = False
+        else:
+            xd += h * wn * wn * (fk * load - x)
+            x += h * xd
+            if xd >= v0:
+                stick, xd = True, v0
+        if i % 20 == 0:
+            out[i // 20] = x
+    tt = np.arange(out.size) * 20 * h
+    xs = out + sensor * np.sin(w * tt) + 0.002 * g.standard_normal(out.size)
+    return tt, xs, r * fn
+
+
+@pytest.mark.parametrize("eps", [0.03, 0.06])
+def test_the_triggering_size_is_the_load_modulation(eps):
+    """Without a normal force, the triggering size is the load modulation
+    the line in x implies: recovered within a quarter (the analytic truth of
+    an independently stepped slider, not a number the code produced)."""
+    from lieng.diagnose.evidence import trig_modulation
+    from lieng.diagnose.segment import find_cycles, prepare
+    t, x, f = _forced_coulomb(eps)
+    pr = prepare(record_from_arrays(t, x, 2.0))
+    c = find_cycles(pr, 10.0)
+    size, se = trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x))
+    assert abs(size - eps) < 0.25 * eps + 2 * se
+
+
+def test_a_line_the_sticks_show_too_is_no_load_modulation():
+    """A line added to x (a sensor's vibration: in the sticks as in the
+    slips) at the size of a 6 % modulation's response implies no load
+    modulation distinguishable from 0."""
+    from lieng.diagnose.evidence import trig_modulation
+    from lieng.diagnose.segment import find_cycles, prepare
+    t, x, f = _forced_coulomb(0.0, sensor=0.004)
+    pr = prepare(record_from_arrays(t, x, 2.0))
+    c = find_cycles(pr, 10.0)
+    size, se = trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x))
+    from lieng.diagnose.evidence import MARGIN
+    assert not (size >= MARGIN["triggering"] and size - 1.96 * se > 0.0), (size, se)

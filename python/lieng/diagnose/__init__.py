@@ -360,8 +360,14 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                         f"replicates, whose slider is still in stick): a second mode of the rig, which the 1-DoF "
                         f"baseline does not have; it also bends the slips' shape, so read the twin-branch evidence "
                         f"with care")
-    rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn)
+    rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn, sizes=aux.get("sizes"))
     warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)
+    tr = rows["triggering"]
+    if tr.get("significant") and "statistic_departure" in tr and not tr["interval"][0] > 0:
+        warnings.append(f"a line at {aux['f_tr']:.4g} Hz is significant, but the slips carry no load modulation "
+                        f"distinguishable from 0 there ({tr['effect_size']:.3g}, 95 % interval {tr['interval'][0]:.2g} "
+                        f"to {tr['interval'][1]:.2g}): a vibration the stuck slider shows too (the sensor, the "
+                        f"frame), or slips sampled too coarsely to measure it; not named")
     for k in CANDIDATES:
         r = rows[k]
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])

@@ -25,7 +25,9 @@ The family-wise false-alarm rate over the candidates is held at ALPHA by
 Holm's step-down procedure (a load that follows the motion and a twin
 branch both named: each is tested again against replicates of the other's
 fitted extension, at the level Holm gave it; see :func:`rivals`).
-An effect is **named** when it is significant and its size S - m0 is at
+An effect is **named** when it is significant and its size S - m0 (for
+triggering without a normal force: the load modulation the line implies,
+whose 95 % interval must also lie above 0; see :func:`decide`) is at
 least the relevance margin stated in
 :data:`.evidence.MARGIN` (and at most the bound its own model allows,
 :data:`.evidence.UPPER`), and its nested extension then predicts the held-out
@@ -107,7 +109,7 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
             c = find_cycles(q, fn)
             if c.n < 3:
                 continue
-            st, _, aux = statistics(q, c, fn, y=yb, y_is_force=y_is_force, arcs=arcs, nperm=0)
+            st, _, aux = statistics(q, c, fn, y=yb, y_is_force=y_is_force, arcs=arcs, nperm=0, size=False)
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             continue
         st.update(aux["gof"])
@@ -182,13 +184,19 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0) -
 
 
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
-           withheld=None, u_fn: float = 0.0) -> dict:
+           withheld=None, u_fn: float = 0.0, sizes=None) -> dict:
     """The evidence table: for every candidate the statistic, the null mean
     and spread, z, p, Holm's decision and whether it is named.
 
     ``p_own`` gives p-values calibrated within the record (a permutation
     test) for some candidates: their effect size is the statistic itself.
-    ``withheld`` maps candidates to the reason their evidence is not read."""
+    ``withheld`` maps candidates to the reason their evidence is not read.
+    ``sizes`` maps candidates to an effect size read on a physical scale
+    apart from the statistic the test reads, with its standard error
+    (triggering: the load modulation the line implies): that size and its
+    interval are reported, and the effect is named only when the size
+    reaches the margin and its 95 % interval lies above 0 (the test says
+    there is a line; the size says it is in the friction)."""
     rows = {}
     p_own = p_own or {}
     withheld = withheld or {}
@@ -220,6 +228,11 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         m0, s0, d, den, z, p, band = calibrate(S, err, v, k in ONE_SIDED, e, u_fn)
         rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=err, z=z, p=float(p), effect_size=d, applicable=True,
                        interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band)
+        if sizes and k in sizes:
+            size, size_se = sizes[k]
+            size_se = float(size_se) if math.isfinite(size_se) else abs(float(size)) + 1.0
+            rows[k].update(statistic_departure=d, effect_size=float(size),
+                           interval=[float(size) - 1.96 * size_se, float(size) + 1.96 * size_se])
     # Holm's step-down over the applicable candidates
     app = sorted((r["p"], k) for k, r in rows.items() if r["applicable"])
     m = len(app)
@@ -235,6 +248,8 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])
         r["margin"] = MARGIN[k]
         r["named"] = bool(r["significant"] and size >= MARGIN[k])
+        if r["named"] and "statistic_departure" in r and not r["interval"][0] > 0:
+            r["named"] = False
         if r["named"] and k in UPPER and size > UPPER[k]:
             r["named"] = False
             r["beyond_model"] = (f"{k}: a size of {size:.3g} is beyond the {UPPER[k]} its model allows: the record "

@@ -36,8 +36,15 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
 ``triggering``
     The strongest spectral line above 2 fn that is not a harmonic of the
     stick-slip, in the normal channel less its part locked to the motion (or
-    in x): its amplitude over the mean normal force (a force channel: the
-    load modulation), or over D.
+    in x: the line that stands highest above its neighbours, since the
+    slider's response falls as 1 / (f / fn)**2): its amplitude over the mean
+    normal force (a force channel: the load modulation), or over D; this
+    statistic is what the replicates calibrate.  Its effect size is the load
+    modulation itself: a normal force's relative line, or otherwise the one
+    x implies (:func:`trig_modulation`: the line in the slips less the line
+    in the sticks, through the slider's response, over the friction level),
+    with a jackknife interval that must lie above 0 (a line the stuck slider
+    shows too is in the sensor or the frame, not in the load).
 ``drive_modulation``
     The stick velocity (a line fitted to x in each stick's middle) over the
     drive, stick by stick: the relative amplitude of the sinusoid that
@@ -77,7 +84,7 @@ from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
 from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit, lowpass, position_anova,
                                      spectral_line, y_locked)
-from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_ratios, travel
+from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_part, stick_ratios, travel
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "lowpass"]
 
@@ -286,13 +293,86 @@ def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
         f, a, snr = spectral_line(resid, pr.dt, 2.0 * fn)
         scale = abs(float(np.mean(y))) if y_is_force else D
     else:
-        f, a, snr = spectral_line(pr.x, pr.dt, 2.0 * fn, f0)
+        f, a, snr = spectral_line(pr.x, pr.dt, 2.0 * fn, f0, by="snr")
         scale = D
     if not scale > 0:
         return 0.0, math.inf, f
     # standard error of a line amplitude in noise: the spectrum beside it
     se = a / snr if snr > 0 else math.inf
     return a / scale, se / scale, f
+
+
+def _line_normal(pr: Prepared, seg, w: float, nuisance):
+    """The normal equations of a line sin/cos(w t) in x over the samples
+    ``seg``, with the columns ``nuisance(tau)`` (tau the time from the first
+    sample) projected out: (2x2, 2)."""
+    t = pr.t[seg]
+    Q, _ = np.linalg.qr(nuisance(t - t[0]))
+    S = np.column_stack([np.sin(w * t), np.cos(w * t)])
+    S = S - Q @ (Q.T @ S)
+    xx = pr.x[seg] - Q @ (Q.T @ pr.x[seg])
+    return S.T @ S, S.T @ xx
+
+
+#: the triggering size reads at most this many slips and sticks (an even
+#: subset, at a fixed cost on long records)
+TRIG_UNITS = 400
+
+
+def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
+    """The load modulation a line at ``f`` in x implies (the ``triggering``
+    effect size on a physical scale where no normal force is recorded):
+    the line's vector in the slips (each slip's own arc a + b tau +
+    c cos + d sin(wn tau) projected out) less its vector in the sticks' middles (each stick's
+    quadratic projected out: a line the stuck slider shows too is in the
+    sensor or the frame, not in the friction), times the slider's response
+    |1 - (f / fn)**2| (a friction force modulated at f moves x by its
+    amplitude over that), over the friction level (the median of the
+    reverse construction in the slips).  Returns (epsilon, its jackknife
+    standard error over ten blocks in time); (0, inf) when too few slips."""
+    if not (f > 0 and c.n >= 5):
+        return 0.0, math.inf
+    w, wn = 2 * math.pi * f, 2 * math.pi * fn
+
+    def scaled(tau):
+        return tau / max(float(tau[-1]), 1e-12)
+
+    # a slip's own arc (a coarsely sampled slip, under 8 samples: without the trend)
+    slip_cols = lambda tau: np.column_stack([np.ones(tau.size), np.cos(wn * tau), np.sin(wn * tau)]
+                                            + ([scaled(tau)] if tau.size >= 8 else []))
+    stick_cols = lambda tau: np.column_stack([np.ones(tau.size), scaled(tau), scaled(tau) ** 2])
+    T0, T = float(pr.t[0]), max(float(pr.t[-1] - pr.t[0]), 1e-12)
+    units = {"slip": [], "stick": []}
+    ks = range(c.n) if c.n <= TRIG_UNITS else np.unique(np.linspace(0, c.n - 1, TRIG_UNITS).astype(int))
+    for k in ks:
+        seg = np.arange(int(c.peak_i[k]), int(c.trough_i[k]) + 1)
+        if seg.size >= 5:
+            units["slip"].append((min(int(10 * (pr.t[seg[0]] - T0) / T), 9), *_line_normal(pr, seg, w, slip_cols)))
+        if k + 1 < c.n and c.next_ok[k]:
+            seg = stick_part(c, k)
+            if seg.size >= 6:
+                units["stick"].append((min(int(10 * (pr.t[seg[0]] - T0) / T), 9),
+                                       *_line_normal(pr, seg, w, stick_cols)))
+    if len(units["slip"]) < 5:
+        return 0.0, math.inf
+    _, _, F, _, _ = slip_friction(pr, c, fn)
+    level = float(np.median(F)) if F.size else 0.0
+    level = level if level > 0 else D
+    gain = abs(1.0 - (f / fn) ** 2) / level
+
+    def line(which, keep):
+        ata, atb = np.zeros((2, 2)), np.zeros(2)
+        for blk, a, b in units[which]:
+            if keep[blk]:
+                ata += a
+                atb += b
+        return np.linalg.solve(ata, atb) if np.linalg.cond(ata) < 1e8 else np.zeros(2)
+
+    def est(keep):
+        stick = line("stick", keep) if len(units["stick"]) >= 3 else np.zeros(2)
+        return float(np.hypot(*(line("slip", keep) - stick))) * gain
+
+    return est(np.ones(10, bool)), _jackknife(est, 10)
 
 
 def _stick_series(pr: Prepared, c: Cycles):
@@ -371,7 +451,7 @@ def _position(pr: Prepared, c: Cycles):
 
 
 def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arcs: bool = True,
-               nperm: int = 199) -> tuple[dict, dict, dict]:
+               nperm: int = 199, size: bool = True) -> tuple[dict, dict, dict]:
     """Every candidate's effect size and its standard error from the record's
     own scatter, and auxiliary values (D, the triggering line's frequency,
     the low-passed normal channel).  ``y`` overrides ``pr.y``; ``arcs``: the
@@ -379,7 +459,10 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     then fitted to x itself, otherwise read from the reverse construction;
     a record and its replicates are read the same way); ``nperm``: the
     permutations of the tests calibrated within the record (0 for the
-    baseline's replicates, whose own p-values are not used)."""
+    baseline's replicates, whose own p-values are not used); ``size``: the
+    effect sizes read on a physical scale apart from the statistic
+    (``aux["sizes"]``: name -> (size, standard error); not needed on the
+    replicates)."""
     y = pr.y if y is None else y
     D = c.amplitude(pr.x)
     D = D if D > 0 else 1.0
@@ -393,6 +476,11 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     st["static_ageing"], se["static_ageing"] = v / D, e / D
     v, e, f_tr = _triggering(pr, c, fn, y, y_is_force, D)
     st["triggering"], se["triggering"] = v, e
+    # the size on a physical scale: a normal force's line is the load modulation itself; otherwise what x's
+    # line implies (only the record's own reading needs it: the replicates calibrate the line's test)
+    # (where too few slips carry it, the line's own reading stands)
+    eps = trig_modulation(pr, c, fn, f_tr, D) if (size and not y_is_force) else (0.0, math.inf)
+    sizes = {"triggering": eps} if math.isfinite(eps[1]) else {}
     v, e, p_drv, f_drv = _drive(pr, c, fn, nperm)
     st["drive_modulation"], se["drive_modulation"] = v, e
     v, e, f_lvl, p_lvl = _drift(pr, c, nperm)
@@ -404,6 +492,7 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     st["position_dependence"], se["position_dependence"] = v / D, e
     aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "y_is_force": y_is_force, "f_level": f_lvl, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
            # statistics calibrated within the record (a permutation test), not by the baseline's replicates
+           "sizes": sizes,
            "p_own": {k: v for k, v in (("drive_modulation", p_drv), ("position_dependence", p_pos),
                                        ("friction_drift", p_lvl)) if v is not None}, "gof": goodness(pr, c, fn, D)}
     return st, se, aux

@@ -43,10 +43,13 @@ def _jackknife(values_fn, n_units, groups=10):
     return float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
 
 
-def spectral_line(sig, dt, fmin, f0=None):
+def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude"):
     """The strongest line above fmin and, with f0, off the harmonics of f0
     (by more than a bin): (frequency, amplitude, local signal-to-noise of the
-    line), from a Hann-windowed FFT."""
+    line), from a Hann-windowed FFT.  ``by="snr"``: the line that stands
+    highest above its neighbourhood (the mean amplitude 4 to 30 bins either
+    side) rather than the largest, so that a response that falls with
+    frequency (a slider's, as 1 / (f / fn)**2) does not prefer the low end."""
     s = sig - np.mean(sig)
     n = s.size
     w = np.hanning(n)
@@ -61,7 +64,17 @@ def spectral_line(sig, dt, fmin, f0=None):
         ok &= np.abs(f / f0 - np.round(f / f0)) * f0 > 2.0 / (n * dt)
     if not np.any(ok):
         return 0.0, 0.0, 0.0
-    k = int(np.flatnonzero(ok)[np.argmax(amp[ok])])
+    if by == "snr":
+        cs = np.r_[0.0, np.cumsum(amp)]
+        i = np.arange(amp.size)
+        lo, hi = np.maximum(i - 30, 0), np.minimum(i + 31, amp.size)
+        ilo, ihi = np.maximum(i - 3, lo), np.minimum(i + 4, hi)
+        cnt = (ilo - lo) + (hi - ihi)
+        level = ((cs[ilo] - cs[lo]) + (cs[hi] - cs[ihi])) / np.maximum(cnt, 1)
+        score = np.where(level > 0, amp / np.where(level > 0, level, 1.0), 0.0)
+    else:
+        score = amp
+    k = int(np.flatnonzero(ok)[np.argmax(score[ok])])
     lo, hi = max(k - 30, 1), min(k + 31, amp.size)
     side = np.r_[amp[lo:max(k - 3, lo)], amp[min(k + 4, hi):hi]]
     snr = float(amp[k] / np.median(side)) if side.size and np.median(side) > 0 else 0.0
