@@ -82,8 +82,8 @@ import numpy as np
 
 from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
-from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit, lowpass, position_anova,
-                                     spectral_line, y_locked)
+from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit, line_fit, lowpass,
+                                     position_anova, refine_line, spectral_line, y_locked)
 from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_part, stick_ratios, travel
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "lowpass"]
@@ -287,19 +287,38 @@ def _ageing(pr: Prepared, c: Cycles):
 
 
 def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
+    """(statistic, its standard error, the line's frequency, the signal the line was found in)."""
     f0 = 1.0 / float(np.median(c.periods(pr.t))) if np.any(c.next_ok) else None
     if y is not None:
-        resid = y - y_locked(pr.x, c.v, y, directions(pr))[0]
-        f, a, snr = spectral_line(resid, pr.dt, 2.0 * fn)
+        sig = y - y_locked(pr.x, c.v, y, directions(pr))[0]
+        f, a, snr = spectral_line(sig, pr.dt, 2.0 * fn)
         scale = abs(float(np.mean(y))) if y_is_force else D
     else:
-        f, a, snr = spectral_line(pr.x, pr.dt, 2.0 * fn, f0, by="snr")
+        sig = pr.x
+        f, a, snr = spectral_line(sig, pr.dt, 2.0 * fn, f0, by="snr")
         scale = D
     if not scale > 0:
-        return 0.0, math.inf, f
+        return 0.0, math.inf, f, sig
     # standard error of a line amplitude in noise: the spectrum beside it
     se = a / snr if snr > 0 else math.inf
-    return a / scale, se / scale, f
+    return a / scale, se / scale, f, sig
+
+
+def force_modulation(pr: Prepared, sig, f: float, mean: float):
+    """The load modulation a normal *force* channel shows: the least-squares
+    line at ``f`` in ``sig`` (the channel less its part locked to the
+    motion), on the record's own times (a reciprocating record's cut
+    dwells keep the line's phase), over the mean force; (its value, its
+    jackknife standard error over ten blocks in time)."""
+    if not (f > 0 and mean > 0):
+        return 0.0, math.inf
+    blocks = np.array_split(np.arange(sig.size), 10)
+
+    def est(keep):
+        i = np.concatenate([b for b, k in zip(blocks, keep) if k])
+        return line_fit(sig[i], pr.t[i], f)[0] / mean
+
+    return est(np.ones(10, bool)), _jackknife(est, 10)
 
 
 def _line_normal(pr: Prepared, seg, w: float, nuisance):
@@ -474,13 +493,20 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     st["load_variation"], se["load_variation"] = (v, e) if y_is_force else (v / D, e / D)
     v, e, lrange = _ageing(pr, c)
     st["static_ageing"], se["static_ageing"] = v / D, e / D
-    v, e, f_tr = _triggering(pr, c, fn, y, y_is_force, D)
+    v, e, f_tr, sig = _triggering(pr, c, fn, y, y_is_force, D)
     st["triggering"], se["triggering"] = v, e
-    # the size on a physical scale: a normal force's line is the load modulation itself; otherwise what x's
-    # line implies (only the record's own reading needs it: the replicates calibrate the line's test)
-    # (where too few slips carry it, the line's own reading stands)
-    eps = trig_modulation(pr, c, fn, f_tr, D) if (size and not y_is_force) else (0.0, math.inf)
-    sizes = {"triggering": eps} if math.isfinite(eps[1]) else {}
+    sizes = {}
+    if size and f_tr > 0:
+        # the size on a physical scale (only the record's own reading needs it: the replicates calibrate the
+        # line's test): a normal force's line is the load modulation itself; otherwise what x's line implies
+        # (where too few slips carry it, the line's own reading stands); the line's frequency refined first
+        # (off the bin, on the record's own times)
+        if y is None:
+            sig = sig - lowpass(sig, pr.dt, 2.0 * fn)
+        f_tr = refine_line(sig, pr.t, f_tr)
+        eps = force_modulation(pr, sig, f_tr, abs(float(np.mean(y)))) if y_is_force else \
+            trig_modulation(pr, c, fn, f_tr, D)
+        sizes = {"triggering": eps} if math.isfinite(eps[1]) else {}
     v, e, p_drv, f_drv = _drive(pr, c, fn, nperm)
     st["drive_modulation"], se["drive_modulation"] = v, e
     v, e, f_lvl, p_lvl = _drift(pr, c, nperm)

@@ -48,7 +48,7 @@ from lieng.errors import LiengInputError
 from lieng.diagnose.baseline import (Params, identify, model_drive, model_y, pr_like, run_slice, simulate,
                                      slip_friction)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
-from lieng.diagnose.signals import drive_scan, level_fit, lowpass
+from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
 
 __all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds", "unconfirmed"]
@@ -303,12 +303,6 @@ def _fit_level(pr, p: Params, fn, target, tr_mask, ylow=None, it=5):
     return p
 
 
-def _line_fit(sig, t, f):
-    A = np.column_stack([np.ones(t.size), t - t.mean(), np.sin(2 * math.pi * f * t), np.cos(2 * math.pi * f * t)])
-    c = np.linalg.lstsq(A, sig, rcond=None)[0]
-    return float(math.hypot(c[2], c[3])), float(math.atan2(c[3], c[2]))
-
-
 def _per_load(base: Params, pr: Prepared, c: Cycles, fn: float, load, sel, **kw) -> list:
     """The baseline with a load term ``kw``: its static limit read per unit
     load, with the baseline's characteristic and with the characteristic
@@ -408,11 +402,7 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             # refine the frequency on the training part (sub-bin), on y or x above 2 fn
             sig = (pr.y if pr.y is not None else pr.x)[tr_mask]
             hp = sig - lowpass(sig, pr.dt, 2 * fn)
-            # coarse (a quarter of a bin over +-4 bins of the training span) then fine (a fortieth)
-            T = max(float(tt[-1] - tt[0]), pr.dt)
-            for half, num in ((4.0, 33), (0.25, 21)):
-                grid = f_tr + np.linspace(-half, half, num) / T
-                f_tr = float(max(grid, key=lambda f: _line_fit(hp, tt, f)[0]))
+            f_tr = refine_line(hp, tt, f_tr)
             idx, s, F, br, sid = slip_friction(pr, c, fn)
             m = tr_mask[idx]
             ti = pr.t[idx][m]
@@ -422,10 +412,10 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             co = np.linalg.lstsq(A, F[m], rcond=None)[0]
             eps = float(math.hypot(co[4], co[5])) / Fbar
             ph = float(math.atan2(co[5], co[4]))
-            ax_, phx = _line_fit(pr.x[tr_mask] - lowpass(pr.x[tr_mask], pr.dt, 2 * fn), tt, f_tr)
+            ax_, phx = line_fit(pr.x[tr_mask] - lowpass(pr.x[tr_mask], pr.dt, 2 * fn), tt, f_tr)
             kw = dict(trig_f=f_tr, trig_ax=ax_, trig_phx=phx)
             if pr.y is not None:
-                ay, phy = _line_fit(hp, tt, f_tr)
+                ay, phy = line_fit(hp, tt, f_tr)
                 kw.update(trig_ay=ay, trig_phy=phy)
             for sc in (0.0, 0.5, 1.0):
                 out.append(lvl(base.copy(trig_eps=sc * eps, trig_ph=ph, **kw)))

@@ -81,6 +81,25 @@ def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude"):
     return float(f[k]), float(amp[k]), snr
 
 
+def line_fit(sig, t, f):
+    """Least squares sig ~ a + b t + A sin(2 pi f t + phase): (A, phase)."""
+    A = np.column_stack([np.ones(t.size), t - t.mean(), np.sin(2 * math.pi * f * t), np.cos(2 * math.pi * f * t)])
+    c = np.linalg.lstsq(A, sig, rcond=None)[0]
+    return float(math.hypot(c[2], c[3])), float(math.atan2(c[3], c[2]))
+
+
+def refine_line(sig, t, f):
+    """The frequency near ``f`` at which the least-squares line in ``sig``
+    (on its own times ``t``: a record whose holds were cut keeps its phase)
+    is largest: a quarter of a bin (1 / the span of t) over +-4 bins, then a
+    fortieth over +-1/4."""
+    T = max(float(t[-1] - t[0]), 1e-12)
+    for half, num in ((4.0, 33), (0.25, 21)):
+        grid = f + np.linspace(-half, half, num) / T
+        f = float(max(grid, key=lambda g: line_fit(sig, t, g)[0]))
+    return f
+
+
 def y_on_motion(x, v, y):
     """The part of y locked to the motion: least squares y ~ c0 + c1 x + c2 x'
     (kept only when it explains more than a third of y's variance)."""
