@@ -960,19 +960,25 @@ def test_the_triggering_size_is_the_load_modulation(eps):
     t, x, f = _forced_coulomb(eps)
     pr = prepare(record_from_arrays(t, x, 2.0))
     c = find_cycles(pr, 10.0)
-    size, se = trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x))
+    size, se, p = trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x))
     assert abs(size - eps) < 0.25 * eps + 2 * se
+    assert p < 0.005                       # and it is in the friction: the sticks do not carry it
 
 
 def test_a_line_the_sticks_show_too_is_no_load_modulation():
     """A line added to x (a sensor's vibration: in the sticks as in the
-    slips) at the size of a 6 % modulation's response implies no load
-    modulation distinguishable from 0."""
+    slips) at the size of a 6 % modulation's response: the size's own test
+    (Hotelling's, slips' line less the sticks') holds its level over 60
+    such records, lines from 3.7 to 5.2 fn (measured: 4 % below 0.05 and
+    1 % below 0.01 over 200)."""
     from lieng.diagnose.evidence import trig_modulation
     from lieng.diagnose.segment import find_cycles, prepare
-    t, x, f = _forced_coulomb(0.0, sensor=0.004)
-    pr = prepare(record_from_arrays(t, x, 2.0))
-    c = find_cycles(pr, 10.0)
-    size, se = trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x))
-    from lieng.diagnose.evidence import MARGIN
-    assert not (size >= MARGIN["triggering"] and size - 1.96 * se > 0.0), (size, se)
+    ps = []
+    for seed in range(60):
+        t, x, f = _forced_coulomb(0.0, sensor=0.004, seed=seed, r=3.7 + 0.37 * (seed % 5))
+        pr = prepare(record_from_arrays(t, x, 2.0))
+        c = find_cycles(pr, 10.0)
+        ps.append(trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x))[2])
+    ps = np.array(ps)
+    # binomial(60, 0.05): P(>= 8) = 0.01; binomial(60, 0.01): P(>= 3) = 0.02
+    assert np.count_nonzero(ps < 0.05) <= 7 and np.count_nonzero(ps < 0.01) <= 2, np.sort(ps)[:8]

@@ -363,11 +363,13 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn, sizes=aux.get("sizes"))
     warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)
     tr = rows["triggering"]
-    if tr.get("significant") and "statistic_departure" in tr and not tr["interval"][0] > 0:
+    if tr.get("significant") and "statistic_departure" in tr and (
+            tr["p_size"] > tr["holm_level"] if "p_size" in tr else not tr["interval"][0] > 0):
+        p_in = f", p = {tr['p_size']:.2g}" if "p_size" in tr else ""
         warnings.append(f"a line at {aux['f_tr']:.4g} Hz is significant, but the slips carry no load modulation "
                         f"distinguishable from 0 there ({tr['effect_size']:.3g}, 95 % interval {tr['interval'][0]:.2g} "
-                        f"to {tr['interval'][1]:.2g}): a vibration the stuck slider shows too (the sensor, the "
-                        f"frame), or slips sampled too coarsely to measure it; not named")
+                        f"to {tr['interval'][1]:.2g}{p_in}): a vibration the stuck slider shows too (the sensor, "
+                        f"the frame), or slips sampled too coarsely to measure it; not named")
     for k in CANDIDATES:
         r = rows[k]
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])

@@ -27,7 +27,8 @@ branch both named: each is tested again against replicates of the other's
 fitted extension, at the level Holm gave it; see :func:`rivals`).
 An effect is **named** when it is significant and its size S - m0 (for
 triggering without a normal force: the load modulation the line implies,
-whose 95 % interval must also lie above 0; see :func:`decide`) is at
+which must also pass its own test, Hotelling's on the slips' line less
+the sticks', at the candidate's Holm level; see :func:`decide`) is at
 least the relevance margin stated in
 :data:`.evidence.MARGIN` (and at most the bound its own model allows,
 :data:`.evidence.UPPER`), and its nested extension then predicts the held-out
@@ -198,10 +199,13 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
     ``withheld`` maps candidates to the reason their evidence is not read.
     ``sizes`` maps candidates to an effect size read on a physical scale
     apart from the statistic the test reads, with its standard error
-    (triggering: the load modulation the line implies): that size and its
-    interval (+- SIZE_T standard errors) are reported, and the effect is named only when the size
-    reaches the margin and its 95 % interval lies above 0 (the test says
-    there is a line; the size says it is in the friction)."""
+    (triggering: the load modulation the line implies), and optionally the
+    p-value of the size's own test: that size and its interval (+- SIZE_T
+    standard errors) are reported, and the effect is named only when the
+    size reaches the margin and its own test passes at the level Holm gave
+    the candidate (without a p-value: its 95 % interval lies above 0) (the
+    line's test says there is a line; the size's says it is in the
+    friction)."""
     rows = {}
     p_own = p_own or {}
     withheld = withheld or {}
@@ -234,10 +238,12 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=err, z=z, p=float(p), effect_size=d, applicable=True,
                        interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band)
         if sizes and k in sizes:
-            size, size_se = sizes[k]
+            size, size_se, *p_in = sizes[k]
             size_se = float(size_se) if math.isfinite(size_se) else abs(float(size)) + 1.0
             rows[k].update(statistic_departure=d, effect_size=float(size),
                            interval=[float(size) - SIZE_T * size_se, float(size) + SIZE_T * size_se])
+            if p_in:
+                rows[k]["p_size"] = float(p_in[0])
     # Holm's step-down over the applicable candidates
     app = sorted((r["p"], k) for k, r in rows.items() if r["applicable"])
     m = len(app)
@@ -253,7 +259,11 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])
         r["margin"] = MARGIN[k]
         r["named"] = bool(r["significant"] and size >= MARGIN[k])
-        if r["named"] and "statistic_departure" in r and not r["interval"][0] > 0:
+        if r["named"] and "p_size" in r:
+            # the size has its own test (triggering in x: is the line in the friction, not the sensor?),
+            # held at the level Holm gave the candidate
+            r["named"] = r["p_size"] <= r["holm_level"]
+        elif r["named"] and "statistic_departure" in r and not r["interval"][0] > 0:
             r["named"] = False
         if r["named"] and k in UPPER and size > UPPER[k]:
             r["named"] = False

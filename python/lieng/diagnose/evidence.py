@@ -82,8 +82,8 @@ import numpy as np
 
 from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
-from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit, line_fit, lowpass,
-                                     position_anova, refine_line, spectral_line, y_locked)
+from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, jackknife_vector, level_fit,
+                                     line_fit, lowpass, position_anova, refine_line, spectral_line, y_locked)
 from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_part, stick_ratios, travel
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "lowpass"]
@@ -336,6 +336,11 @@ def _line_normal(pr: Prepared, seg, w: float, nuisance):
 #: the triggering size reads at most this many slips and sticks (an even
 #: subset, at a fixed cost on long records)
 TRIG_UNITS = 400
+#: ... in this many contiguous groups of cycles for its jackknife (Hotelling's
+#: test of the slip-less-stick vector then has F(2, G - 2): more groups, more
+#: power on a short record; groups of 20 cycles on a long one still carry a
+#: slow wander)
+TRIG_GROUPS = 20
 
 
 def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
@@ -348,9 +353,11 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     |1 - (f / fn)**2| (a friction force modulated at f moves x by its
     amplitude over that), over the friction level (the median of the
     reverse construction in the slips).  Returns (epsilon, its jackknife
-    standard error over ten blocks in time); (0, inf) when too few slips."""
+    standard error over ten blocks in time, the p-value of Hotelling's test
+    that the slip-less-stick vector is 0: the line is in the friction);
+    (0, inf, 1) when too few slips."""
     if not (f > 0 and c.n >= 5):
-        return 0.0, math.inf
+        return 0.0, math.inf, 1.0
     w, wn = 2 * math.pi * f, 2 * math.pi * fn
 
     def scaled(tau):
@@ -360,20 +367,20 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     slip_cols = lambda tau: np.column_stack([np.ones(tau.size), np.cos(wn * tau), np.sin(wn * tau)]
                                             + ([scaled(tau)] if tau.size >= 8 else []))
     stick_cols = lambda tau: np.column_stack([np.ones(tau.size), scaled(tau), scaled(tau) ** 2])
-    T0, T = float(pr.t[0]), max(float(pr.t[-1] - pr.t[0]), 1e-12)
     units = {"slip": [], "stick": []}
     ks = range(c.n) if c.n <= TRIG_UNITS else np.unique(np.linspace(0, c.n - 1, TRIG_UNITS).astype(int))
-    for k in ks:
+    G = min(TRIG_GROUPS, len(ks))
+    for i, k in enumerate(ks):
+        blk = i * G // len(ks)             # contiguous groups of cycles in time order
         seg = np.arange(int(c.peak_i[k]), int(c.trough_i[k]) + 1)
         if seg.size >= 5:
-            units["slip"].append((min(int(10 * (pr.t[seg[0]] - T0) / T), 9), *_line_normal(pr, seg, w, slip_cols)))
+            units["slip"].append((blk, *_line_normal(pr, seg, w, slip_cols)))
         if k + 1 < c.n and c.next_ok[k]:
             seg = stick_part(c, k)
             if seg.size >= 6:
-                units["stick"].append((min(int(10 * (pr.t[seg[0]] - T0) / T), 9),
-                                       *_line_normal(pr, seg, w, stick_cols)))
+                units["stick"].append((blk, *_line_normal(pr, seg, w, stick_cols)))
     if len(units["slip"]) < 5:
-        return 0.0, math.inf
+        return 0.0, math.inf, 1.0
     _, _, F, _, _ = slip_friction(pr, c, fn)
     level = float(np.median(F)) if F.size else 0.0
     level = level if level > 0 else D
@@ -387,11 +394,14 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
                 atb += b
         return np.linalg.solve(ata, atb) if np.linalg.cond(ata) < 1e8 else np.zeros(2)
 
-    def est(keep):
+    def vec(keep):
         stick = line("stick", keep) if len(units["stick"]) >= 3 else np.zeros(2)
-        return float(np.hypot(*(line("slip", keep) - stick))) * gain
+        return (line("slip", keep) - stick) * gain
 
-    return est(np.ones(10, bool)), _jackknife(est, 10)
+    d, cov, p = jackknife_vector(vec, G, groups=G)
+    eps = float(np.hypot(*d))
+    u = d / eps if eps > 0 else np.array([1.0, 0.0])
+    return eps, float(math.sqrt(max(float(u @ cov @ u), 0.0))), p
 
 
 def _stick_series(pr: Prepared, c: Cycles):
