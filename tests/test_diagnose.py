@@ -969,8 +969,8 @@ def test_a_line_the_sticks_show_too_is_no_load_modulation():
     """A line added to x (a sensor's vibration: in the sticks as in the
     slips) at the size of a 6 % modulation's response: the size's own test
     (Hotelling's, slips' line less the sticks') holds its level over 60
-    such records, lines from 3.7 to 5.2 fn (measured: 4 % below 0.05 and
-    1 % below 0.01 over 200)."""
+    such records, lines from 3.7 to 5.2 fn (measured: 2.5 % below 0.05 and
+    1.5 % below 0.01 over 200)."""
     from lieng.diagnose.evidence import trig_modulation
     from lieng.diagnose.segment import find_cycles, prepare
     ps = []

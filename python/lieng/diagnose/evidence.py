@@ -79,10 +79,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.special import fdtrc
 
 from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
-from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, jackknife_vector, level_fit,
+from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit,
                                      line_fit, lowpass, position_anova, refine_line, spectral_line, y_locked)
 from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_part, stick_ratios, travel
 
@@ -336,11 +337,6 @@ def _line_normal(pr: Prepared, seg, w: float, nuisance):
 #: the triggering size reads at most this many slips and sticks (an even
 #: subset, at a fixed cost on long records)
 TRIG_UNITS = 400
-#: ... in this many contiguous groups of cycles for its jackknife (Hotelling's
-#: test of the slip-less-stick vector then has F(2, G - 2): more groups, more
-#: power on a short record; groups of 20 cycles on a long one still carry a
-#: slow wander)
-TRIG_GROUPS = 20
 
 
 def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
@@ -352,10 +348,13 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     sensor or the frame, not in the friction), times the slider's response
     |1 - (f / fn)**2| (a friction force modulated at f moves x by its
     amplitude over that), over the friction level (the median of the
-    reverse construction in the slips).  Returns (epsilon, its jackknife
-    standard error over ten blocks in time, the p-value of Hotelling's test
-    that the slip-less-stick vector is 0: the line is in the friction);
-    (0, inf, 1) when too few slips."""
+    reverse construction in the slips).  Returns (epsilon, its standard
+    error, the p-value of Hotelling's test that the slip-less-stick vector
+    is 0, i.e. that the line is not in the friction).  The covariance is the
+    cluster-robust sandwich with each slip and each stick a cluster (any
+    noise within a unit, white or not; a slow wander does not reach a line
+    at f >> the stick-slip rate), T**2 referred to F(2, n - 2).  (0, inf, 1)
+    when too few slips."""
     if not (f > 0 and c.n >= 5):
         return 0.0, math.inf, 1.0
     w, wn = 2 * math.pi * f, 2 * math.pi * fn
@@ -369,16 +368,14 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     stick_cols = lambda tau: np.column_stack([np.ones(tau.size), scaled(tau), scaled(tau) ** 2])
     units = {"slip": [], "stick": []}
     ks = range(c.n) if c.n <= TRIG_UNITS else np.unique(np.linspace(0, c.n - 1, TRIG_UNITS).astype(int))
-    G = min(TRIG_GROUPS, len(ks))
-    for i, k in enumerate(ks):
-        blk = i * G // len(ks)             # contiguous groups of cycles in time order
+    for k in ks:
         seg = np.arange(int(c.peak_i[k]), int(c.trough_i[k]) + 1)
         if seg.size >= 5:
-            units["slip"].append((blk, *_line_normal(pr, seg, w, slip_cols)))
+            units["slip"].append(_line_normal(pr, seg, w, slip_cols))
         if k + 1 < c.n and c.next_ok[k]:
             seg = stick_part(c, k)
             if seg.size >= 6:
-                units["stick"].append((blk, *_line_normal(pr, seg, w, stick_cols)))
+                units["stick"].append(_line_normal(pr, seg, w, stick_cols))
     if len(units["slip"]) < 5:
         return 0.0, math.inf, 1.0
     _, _, F, _, _ = slip_friction(pr, c, fn)
@@ -386,21 +383,34 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     level = level if level > 0 else D
     gain = abs(1.0 - (f / fn) ** 2) / level
 
-    def line(which, keep):
-        ata, atb = np.zeros((2, 2)), np.zeros(2)
-        for blk, a, b in units[which]:
-            if keep[blk]:
-                ata += a
-                atb += b
-        return np.linalg.solve(ata, atb) if np.linalg.cond(ata) < 1e8 else np.zeros(2)
+    def line(which):
+        """The pooled line over the units and its covariance, robust to any noise within a unit (each
+        slip or stick a cluster: the sandwich A^-1 (sum s s') A^-1, s = b - a beta, times n / (n - 1))."""
+        a = np.array([u[0] for u in units[which]])
+        b = np.array([u[1] for u in units[which]])
+        A = a.sum(axis=0)
+        if not np.linalg.cond(A) < 1e8:
+            return np.zeros(2), np.full((2, 2), np.inf), 0
+        beta = np.linalg.solve(A, b.sum(axis=0))
+        sc = b - a @ beta
+        Ai = np.linalg.inv(A)
+        n = len(a)
+        return beta, Ai @ (sc.T @ sc) @ Ai * n / max(n - 1, 1), n
 
-    def vec(keep):
-        stick = line("stick", keep) if len(units["stick"]) >= 3 else np.zeros(2)
-        return (line("slip", keep) - stick) * gain
-
-    d, cov, p = jackknife_vector(vec, G, groups=G)
+    b_slip, v_slip, n = line("slip")
+    b_stick, v_stick, m = line("stick") if len(units["stick"]) >= 3 else (np.zeros(2), np.zeros((2, 2)), n)
+    d = (b_slip - b_stick) * gain
+    cov = (v_slip + v_stick) * gain ** 2
     eps = float(np.hypot(*d))
     u = d / eps if eps > 0 else np.array([1.0, 0.0])
+    dof = min(n, m) - 2
+    p = 1.0
+    if dof >= 2 and np.all(np.isfinite(cov)):
+        try:
+            t2 = float(d @ np.linalg.solve(cov, d))
+            p = float(fdtrc(2, dof, dof / (2.0 * (dof + 1)) * t2)) if math.isfinite(t2) else 1.0
+        except np.linalg.LinAlgError:
+            p = 1.0
     return eps, float(math.sqrt(max(float(u @ cov @ u), 0.0))), p
 
 

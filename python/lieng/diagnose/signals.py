@@ -43,36 +43,6 @@ def _jackknife(values_fn, n_units, groups=10):
     return float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
 
 
-def jackknife_vector(values_fn, n_units, groups=10):
-    """A vector estimate values_fn(mask of units kept) with its jackknife
-    covariance over contiguous blocks of units (as :func:`_jackknife`), and
-    Hotelling's test that its mean is 0: (estimate, covariance, p).  With g
-    blocks and a p-vector, (g - p) / (p (g - 1)) T**2 follows F(p, g - p)
-    under that null; p is 1 when there are too few blocks."""
-    full = np.atleast_1d(np.asarray(values_fn(np.ones(n_units, bool)), float))
-    q = full.size
-    g = min(groups, n_units)
-    if g < q + 2:
-        return full, np.full((q, q), math.inf), 1.0
-    est = []
-    for part in np.array_split(np.arange(n_units), g):
-        keep = np.ones(n_units, bool)
-        keep[part] = False
-        est.append(np.atleast_1d(np.asarray(values_fn(keep), float)))
-    est = np.asarray(est)
-    dev = est - est.mean(axis=0)
-    cov = (g - 1) / g * dev.T @ dev
-    try:
-        t2 = float(full @ np.linalg.solve(cov, full))
-    except np.linalg.LinAlgError:
-        return full, cov, 1.0
-    if not (math.isfinite(t2) and t2 >= 0):
-        return full, cov, 1.0
-    F = (g - q) / (q * (g - 1)) * t2
-    from scipy.special import fdtrc
-    return full, cov, float(fdtrc(q, g - q, F))
-
-
 def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude"):
     """The strongest line above fmin and, with f0, off the harmonics of f0
     (by more than a bin): (frequency, amplitude, local signal-to-noise of the
