@@ -364,7 +364,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)
     tr = rows["triggering"]
     if tr.get("significant") and "statistic_departure" in tr and (
-            tr["p_size"] > tr["holm_level"] if "p_size" in tr else not tr["interval"][0] > 0):
+            tr["p_size"] > tr["size_level"] if "p_size" in tr else not tr["interval"][0] > 0):
         p_in = f", p = {tr['p_size']:.2g}" if "p_size" in tr else ""
         warnings.append(f"a line at {aux['f_tr']:.4g} Hz is significant, but the slips carry no load modulation "
                         f"distinguishable from 0 there ({tr['effect_size']:.3g}, 95 % interval {tr['interval'][0]:.2g} "

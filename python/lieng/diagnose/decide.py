@@ -28,7 +28,7 @@ fitted extension, at the level Holm gave it; see :func:`rivals`).
 An effect is **named** when it is significant and its size S - m0 (for
 triggering without a normal force: the load modulation the line implies,
 which must also pass its own test, Hotelling's on the slips' line less
-the sticks', at the candidate's Holm level; see :func:`decide`) is at
+the sticks', at Bonferroni's level ALPHA / m; see :func:`decide`) is at
 least the relevance margin stated in
 :data:`.evidence.MARGIN` (and at most the bound its own model allows,
 :data:`.evidence.UPPER`), and its nested extension then predicts the held-out
@@ -202,8 +202,9 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
     (triggering: the load modulation the line implies), and optionally the
     p-value of the size's own test: that size and its interval (+- SIZE_T
     standard errors) are reported, and the effect is named only when the
-    size reaches the margin and its own test passes at the level Holm gave
-    the candidate (without a p-value: its 95 % interval lies above 0) (the
+    size reaches the margin and its own test passes at Bonferroni's level
+    alpha / m over the m candidates (without a p-value: its 95 % interval
+    lies above 0) (the
     line's test says there is a line; the size's says it is in the
     friction)."""
     rows = {}
@@ -259,10 +260,11 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])
         r["margin"] = MARGIN[k]
         r["named"] = bool(r["significant"] and size >= MARGIN[k])
-        if r["named"] and "p_size" in r:
-            # the size has its own test (triggering in x: is the line in the friction, not the sensor?),
-            # held at the level Holm gave the candidate
-            r["named"] = r["p_size"] <= r["holm_level"]
+        if "p_size" in r:
+            # the size has its own test (triggering in x: is the line in the friction, not the sensor?): a
+            # second hypothesis outside Holm's ordering, held at Bonferroni's level alpha / m, the strictest
+            r["size_level"] = alpha / max(m, 1)
+            r["named"] = r["named"] and r["p_size"] <= r["size_level"]
         elif r["named"] and "statistic_departure" in r and not r["interval"][0] > 0:
             r["named"] = False
         if r["named"] and k in UPPER and size > UPPER[k]:
