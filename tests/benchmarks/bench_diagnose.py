@@ -134,7 +134,8 @@ def run_one(truth, fn_uncertainty=None):
         named = [e["effect"] for e in d.effects]
         err = None
         detail = {"evidence": {k: {q: r.get(q) for q in ("statistic", "null_mean", "null_sd", "se", "z", "p",
-                                                          "effect_size", "named", "withheld", "fn_band")}
+                                                          "effect_size", "interval", "named", "withheld", "fn_band", "p_size",
+                                                          "size_level")}
                                for k, r in d.evidence.items()},
                   "warnings": d.warnings, "fn_used": d.fn, "fn_source": d.fn_source, "cycles": d.n_cycles,
                   "effects": d.effects, "detected": d.detected, "goodness": d.goodness}
