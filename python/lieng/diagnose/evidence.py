@@ -43,8 +43,9 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     modulation itself: a normal force's relative line, or otherwise the one
     x implies (:func:`trig_modulation`: the line in the slips less the line
     in the sticks, through the slider's response, over the friction level),
-    with a jackknife interval that must lie above 0 (a line the stuck slider
-    shows too is in the sensor or the frame, not in the load).
+    with its own test: Hotelling's on the slips' line less the sticks',
+    cluster-robust over slips and sticks, at alpha / m (a line the stuck
+    slider shows too is in the sensor or the frame, not in the load).
 ``drive_modulation``
     The stick velocity (a line fitted to x in each stick's middle) over the
     drive, stick by stick: the relative amplitude of the sinusoid that
