@@ -204,9 +204,8 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
     standard errors) are reported, and the effect is named only when the
     size reaches the margin and its own test passes at Bonferroni's level
     alpha / m over the m candidates (without a p-value: its 95 % interval
-    lies above 0) (the
-    line's test says there is a line; the size's says it is in the
-    friction)."""
+    lies above 0; ``size_shown`` says which) (the line's test says there
+    is a line; the size's says it is in the friction)."""
     rows = {}
     p_own = p_own or {}
     withheld = withheld or {}
@@ -264,8 +263,10 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
             # the size has its own test (triggering in x: is the line in the friction, not the sensor?): a
             # second hypothesis outside Holm's ordering, held at Bonferroni's level alpha / m, the strictest
             r["size_level"] = alpha / max(m, 1)
-            r["named"] = r["named"] and r["p_size"] <= r["size_level"]
-        elif r["named"] and "statistic_departure" in r and not r["interval"][0] > 0:
+            r["size_shown"] = r["p_size"] <= r["size_level"]
+        elif "statistic_departure" in r:
+            r["size_shown"] = r["interval"][0] > 0
+        if not r.get("size_shown", True):
             r["named"] = False
         if r["named"] and k in UPPER and size > UPPER[k]:
             r["named"] = False
