@@ -58,8 +58,10 @@ __all__ = ["ALPHA", "FN_RATIO", "fn_needed", "null_replicates", "calibrate", "fn
 ALPHA = 0.05
 
 #: the 95 % interval of a size read apart from the statistic (``sizes`` in
-#: :func:`decide`): its standard error is a jackknife over ten blocks, so
-#: the 97.5 % quantile of Student's t with 9 degrees of freedom
+#: :func:`decide`): the 97.5 % quantile of Student's t with 9 degrees of
+#: freedom (a normal force's size has a jackknife over ten blocks; x's, a
+#: sandwich over its n slips and sticks with more, so there it is wider
+#: than it needs to be)
 SIZE_T = 2.262
 
 

@@ -501,8 +501,8 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     permutations of the tests calibrated within the record (0 for the
     baseline's replicates, whose own p-values are not used); ``size``: the
     effect sizes read on a physical scale apart from the statistic
-    (``aux["sizes"]``: name -> (size, standard error); not needed on the
-    replicates)."""
+    (``aux["sizes"]``: name -> (size, standard error[, the p-value of the
+    size's own test]); not needed on the replicates)."""
     y = pr.y if y is None else y
     D = c.amplitude(pr.x)
     D = D if D > 0 else 1.0
