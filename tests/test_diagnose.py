@@ -385,6 +385,36 @@ def test_an_effect_beyond_its_own_model_is_reported_not_named():
     assert decide(st, se, null)["twin_branch"]["named"]
 
 
+@pytest.mark.parametrize("left_twin,left_load,first", [(0.02, 0.10, "load_variation"),
+                                                       (0.08, -0.01, "twin_branch"),
+                                                       (0.03, 0.003, "twin_branch")])
+def test_of_rivals_that_neither_survive_the_one_that_accounts_for_the_other_goes_first(monkeypatch, left_twin,
+                                                                                      left_load, first):
+    """A twin branch and a load both named, each failing its re-test against
+    the other's extension: both stay named, and the first is the one the
+    other's extension leaves the larger share of (a share of the other sign
+    counts as none)."""
+    import importlib
+
+    dm = importlib.import_module("lieng.diagnose.decide")
+
+    rows = {"twin_branch": {"effect_size": 0.25, "holm_level": 0.0125, "se": 0.01},
+            "load_variation": {"effect_size": 0.30, "holm_level": 0.01, "se": 0.01}}
+    left = {"twin_branch": left_twin, "load_variation": left_load}
+
+    def fake(pr, k, other, *a):
+        rows[k]["given_rival"] = {"rival": other, "null_mean": 0.0, "null_sd": 0.01, "effect_size": left[k],
+                                  "p": 0.5, "replicates": 19}
+        return 0.5, abs(left[k])
+
+    monkeypatch.setattr(dm, "_given_rival", fake)
+    base = object()
+    fitted = {k: (object(), None, 0.5, True) for k in dm.RIVALS}
+    named, notes = list(dm.RIVALS), []
+    got = dm.rivals(None, base, fitted, 10.0, 0.05, {}, rows, named, [], notes, False, True, None, 19, 10.0)
+    assert got == first and sorted(named) == sorted(dm.RIVALS)
+    assert any(n.startswith(first + " goes first") for n in notes)
+
 def test_replicates_skip_the_permutations_not_the_statistics():
     """The baseline's replicates are read without the within-record
     permutation tests (their p-values are not used): every statistic is the

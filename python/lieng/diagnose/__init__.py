@@ -20,7 +20,7 @@ import numpy as np
 from lieng.errors import LiengInputError
 from lieng.io.outputs import finite_json as _finite
 from lieng.diagnose.baseline import Params, calibrate_fn, fit_baseline, pr_like, slip_friction
-from lieng.diagnose.decide import ALPHA, decide, fn_needed, misfit, null_replicates, rivals
+from lieng.diagnose.decide import ALPHA, RIVALS, decide, fn_needed, misfit, null_replicates, rivals
 from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics
 from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import y_on_motion
@@ -419,8 +419,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                                 "extension": "fitted" if ext is not base else
                                 ("none better than the baseline on the training part" if cands else
                                  "none available")}))
-    rivals(pr, base, fitted, fn_used, u_fn, st, rows, named, effects, notes, rec.y_is_force, arcs, aux.get("ylow"),
-            replicates, budget)
+    first = rivals(pr, base, fitted, fn_used, u_fn, st, rows, named, effects, notes, rec.y_is_force, arcs,
+                   aux.get("ylow"), replicates, budget)
     # named = detected and confirmed by prediction: an extension that does not predict the held-out cycles
     # better than the baseline leaves the effect detected, not named (a load read from a normal force is
     # its own evidence)
@@ -435,13 +435,18 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         named.remove(k)
         effects.remove(e)
         detected.append({**e, "why_not_named": why})
-    # the primary effect: the one whose extension explains most of the training part
+    # the primary effect: the one whose extension explains most of the training part (of a twin branch and a
+    # load that neither survive the other, the one that accounts for the other better)
     named.sort(key=lambda k: -fitted[k][2])
     if "load_variation" in named and "twin_branch" in named:
+        if first is not None:
+            i, j = sorted(named.index(k) for k in RIVALS)
+            named[i], named[j] = first, next(k for k in RIVALS if k != first)
         notes.append("load_variation and twin_branch are both named: a load that follows the motion bends the "
                      "slips as a twin branch does (the friction rises or falls through each slip with the load), "
-                     "so one may stand for the other; the first is the one whose extension explains more of the "
-                     "training part")
+                     "so one may stand for the other; the first is "
+                     + ("the one that accounts for the other better" if first is not None else
+                        "the one whose extension explains more of the training part"))
     effects.sort(key=lambda e: named.index(e["effect"]))
     primary_ext, primary_gain = (fitted[named[0]][0], fitted[named[0]][1]) if named else (base, None)
     g0 = primary_gain or gain_folds(pr, c, fn_used, [(p[2], p[3], m[0], m[0]) for p, m in zip(parts, fold_models)],

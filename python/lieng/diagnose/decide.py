@@ -345,16 +345,29 @@ def rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_for
     extension accounts for is not named.  A normal *force* is independent
     evidence of the load (its own variation), which no twin branch makes:
     then only the twin is tested.  When neither survives the other, both
-    stay named (the record cannot tell them apart)."""
+    stay named (the record cannot tell them apart at its levels), and the
+    one whose statistic the other's extension leaves the larger share of
+    (its departure from those replicates over its departure from the
+    baseline's, 0 when it has the other sign) is returned: it accounts for
+    its rival better than its rival accounts for it, and goes first.
+    Otherwise None."""
     if not all(k in named and fitted[k][0] is not base for k in RIVALS):
-        return
+        return None
     tests = [("twin_branch", "load_variation")] + ([] if y_is_force else [("load_variation", "twin_branch")])
     keep = {}
     for k, other in tests:
         r = _given_rival(pr, k, other, fitted[other][0], fn, u_fn, st, rows[k], y_is_force, arcs, ylow, replicates, budget)
         keep[k] = r is None or (r[0] <= rows[k]["holm_level"] and r[1] >= MARGIN[k])
     if not any(keep.values()) and len(keep) == 2:
-        return
+        share = {}
+        for k in keep:
+            es, left = rows[k]["effect_size"], rows[k]["given_rival"]["effect_size"]
+            share[k] = max(math.copysign(1.0, es) * left, 0.0) / max(abs(es), 1e-12)
+            rows[k]["given_rival"]["share_left"] = share[k]
+        first = max(share, key=share.get)
+        notes.append(f"{first} goes first: the other's extension leaves {100 * share[first]:.0f} % of its "
+                     f"statistic, its own leaves {100 * min(share.values()):.0f} % of the other's")
+        return first
     for k, ok in keep.items():
         if ok:
             continue
