@@ -1052,3 +1052,59 @@ def test_fn_from_the_slips_duration_is_reached_from_a_far_start(start):
     t, x = _weakening_slider()
     pr = prepare(record_from_arrays(t, x, 2.0))
     assert calibrate_fn(pr, start * 10.0) == pytest.approx(10.0, rel=0.03)
+
+
+@pytest.mark.slow
+def test_an_offset_force_reads_as_the_same_record():
+    """A force sensor's zero offset (here 100 drops) is no physics: the same
+    independently stepped Coulomb slider read with and without it gives the
+    same answer, on a full set of replicates, and its kinetic level moved by
+    the offset (the slider core once kicked each slip off with the whole
+    spring force, so a slip from a large x ran away and no replicate
+    stick-slipped: `none` on 0 replicates, found by a black-box audit)."""
+    t, x, _ = _forced_coulomb(0.0)
+    off = 100 * 0.4
+    d0, d1 = (diagnose(record_from_arrays(t, x + o, 2.0), 10.0) for o in (0.0, off))
+    assert d0.effect == d1.effect == "none"
+    assert d0.n_replicates == d1.n_replicates >= 30
+    assert abs(np.median(d1.baseline.fg) - off - np.median(d0.baseline.fg)) < 0.02
+    assert abs(d1.baseline.fs - off - d0.baseline.fs) < 0.02
+
+
+def test_a_long_gap_is_cut_not_interpolated():
+    """A pause in the logging (one stray sample 20 s before the run, a
+    600 s pause in its middle) is not bridged by a straight line, which
+    would be read as a stick or a slip: the longest part without a gap of
+    more than GAP_CUT intervals is analysed, and the note says so (found by
+    a black-box audit: a stray early sample hid all 26 cycles of a record)."""
+    from lieng.diagnose.read import GAP_CUT
+
+    t = np.arange(4000) * 1e-3
+    x = 0.5 * (1 - np.cos(2 * np.pi * 3.0 * t))
+    rec = record_from_arrays(np.r_[-20.0, t], np.r_[0.0, x], 1.0)
+    assert rec.t[0] == 0.0 and rec.t.size == t.size
+    assert any("gap" in s and "not interpolated" in s for s in rec.notes), rec.notes
+    t2 = np.r_[t, t[-1] + 600 + t[:1000]]
+    rec = record_from_arrays(t2, np.r_[x, x[:1000]], 1.0)
+    assert rec.t[-1] == t[-1] and rec.t.size == t.size
+    # a gap within GAP_CUT intervals is bridged, as before
+    keep = np.r_[np.arange(100), np.arange(100 + GAP_CUT - 2, t.size)]
+    rec = record_from_arrays(t[keep], x[keep], 1.0)
+    assert rec.t.size == t.size and any("resampled" in s for s in rec.notes)
+
+
+def test_a_quantised_position_column_gives_a_smooth_drive(tmp_path):
+    """An encoder's position column (steps of 0.1 mm at 2 mm/s, sampled at
+    2 kHz: 49 samples in 50 repeat the last count) gives the drive
+    velocity the stage had, not a train of pulses (which `diagnose` once
+    read as a drive modulation, found by a black-box audit)."""
+    from lieng.diagnose import read_record
+
+    t, x, _ = _forced_coulomb(0.0)
+    pos = np.floor(2.0 * t / 0.1) * 0.1
+    p = tmp_path / "enc.csv"
+    p.write_text("t [s],x [mm],position [mm]\n" + "".join(f"{a:.6f},{b:.6f},{c:.1f}\n" for a, b, c in zip(t, x, pos)))
+    rec = read_record(p)
+    mid = slice(rec.t.size // 20, -rec.t.size // 20)
+    assert np.max(np.abs(rec.vd[mid] / 2.0 - 1.0)) < 0.1
+    assert any("steps of 0.1 mm" in s for s in rec.notes), rec.notes

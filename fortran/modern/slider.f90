@@ -133,7 +133,15 @@ contains
                else if (s < 0.0_wp) then
                   f = -phi(-s, ns, sg, fg)
                else
-                  f = 0.0_wp
+                  ! s = 0: the sub-step right after the release (the slider still at the drive's
+                  ! velocity): the characteristic at s -> 0 on the side the spring force moves it
+                  ! (was 0, which kicked every slip off with the whole spring force for a sub-step:
+                  ! a slip from a large x, a force record with an offset, ran away)
+                  if (xs >= 0.0_wp) then
+                     f = phi(0.0_wp, ns, sg, fg) + 0.5_wp * b * delta
+                  else
+                     f = -phi(0.0_wp, ns, sg, fg)
+                  end if
                end if
                a = wn * wn * (lfac * f - xs) - 2.0_wp * zeta * wn * vs_
                vs_ = vs_ + h * a
