@@ -215,6 +215,36 @@ def _smooth_derivative(y, dt, win):
     return savgol_filter(y, win, 2, deriv=1, delta=dt)
 
 
+#: a position column that advances by less than its own resolution per sample is differentiated over
+#: this many of its steps (an encoder's counts: over 0.02 s its derivative is a train of pulses)
+QUANT_STEPS = 8
+
+
+def _drive_from_position(pos, dt, notes):
+    """The drive velocity (mm/s) from a position column (mm): its smoothed
+    derivative over 0.02 s, or, where the position is quantised more
+    coarsely than it moves in a sample (its smallest step larger than its
+    typical travel per sample while it moves), over QUANT_STEPS of its
+    steps (at most a twentieth of the record)."""
+    win = 0.02 / dt
+    d = np.abs(np.diff(pos))
+    nz = d[d > 0]
+    m = 200
+    if nz.size >= 10 and pos.size >= 4 * m:
+        q = float(np.percentile(nz, 5))
+        travel = np.abs(pos[m::m] - pos[:-m:m]) / m
+        travel = travel[travel > 0]
+        per_sample = float(np.median(travel)) if travel.size else 0.0
+        if 0 < per_sample < q:
+            w = min(QUANT_STEPS * q / per_sample, pos.size / 20)
+            if w > win:
+                win = w
+                notes.append(f"the position column moves in steps of {q:.3g} mm, more than it travels in a sample "
+                             f"({per_sample:.3g} mm): the drive velocity is its derivative over {win * dt:.3g} s "
+                             f"({QUANT_STEPS} steps)")
+    return _smooth_derivative(pos, dt, win)
+
+
 def read_record(path, v0: float | None = None, stiffness: float | None = None, rate: float | None = None) -> Record:
     """Read a displacement or force record (see the module docstring).
 
@@ -330,7 +360,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if vcol is not None:
         vd, recorded = vcol, True
     elif pos is not None:
-        vd, recorded = _smooth_derivative(pos, dt, 0.02 / dt), True
+        vd, recorded = _drive_from_position(pos, dt, notes), True
         if np.ptp(pos) == 0:
             _fail(f"{path}: column {cols['position'][0]}: the drive never moves")
     else:
@@ -375,13 +405,37 @@ def record_from_arrays(t, x, v0, y=None, *, y_is_force=False, source="arrays") -
 DT_RANGE = (1e-9, 3600.0)
 
 
+#: a gap of more than this many sampling intervals is not interpolated across: the record is cut there
+#: and its longest part without such a gap is analysed (a straight line across a pause in the logging
+#: would be read as a stick or a slip that never happened)
+GAP_CUT = 10
+
+
 def _regularise(path, t, chans, notes) -> dict:
     """The channels on an even grid at the median interval (linear
-    interpolation), with a note when the record was uneven or had gaps."""
+    interpolation), with a note when the record was uneven or had gaps; the
+    longest part without a gap of more than GAP_CUT intervals when it has
+    such gaps."""
     d = np.diff(t)
     dt = float(np.median(d))
     if not dt > 0 or not math.isfinite(dt):
         _fail(f"{path}: column t: no usable sampling interval")
+    cut = np.flatnonzero(d > GAP_CUT * dt)
+    if cut.size:
+        starts, ends = np.r_[0, cut + 1], np.r_[cut + 1, t.size]
+        k = int(np.argmax(ends - starts))
+        a, b = int(starts[k]), int(ends[k])
+        notes.append(f"{cut.size} gap{'s' if cut.size > 1 else ''} of more than {GAP_CUT} sampling intervals in "
+                     f"the time column (the longest {float(np.max(d[cut])):.4g} s): not interpolated across; the "
+                     f"longest part without one is analysed (t = {t[a]:.6g} to {t[b - 1]:.6g} s, {b - a} of "
+                     f"{t.size} samples)")
+        if b - a < MIN_SAMPLES:
+            _fail(f"{path}: column t: gaps of more than {GAP_CUT} sampling intervals leave no part of "
+                  f"{MIN_SAMPLES} samples or more to analyse")
+        t = t[a:b]
+        chans = {name: None if v is None else v[a:b] for name, v in chans.items()}
+        d = np.diff(t)
+        dt = float(np.median(d))
     if not DT_RANGE[0] <= dt <= DT_RANGE[1]:
         _fail(f"{path}: column t: a sampling interval of {dt:g} s is outside {DT_RANGE[0]:g} to {DT_RANGE[1]:g} s: "
               f"check the time column's unit (seconds)")
