@@ -398,3 +398,21 @@ def test_a_cell_with_an_underscore_is_no_number(tmp_path, capsys):
     rc = main(["diagnose", str(p), "--v0", "1", "-o", str(tmp_path / "o"), "-q"])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1 and "line 22, column x: '0_2' is not a number" in err[0]
+
+
+def test_a_txt_or_dat_table_without_a_time_column_is_no_deck(tmp_path, capsys):
+    """A .dat or .txt table whose header names no time column (read with
+    --rate) is a table, not a TRC deck: a deck's cards hold numbers only."""
+    t = np.arange(4000) * 5e-4
+    F = 0.5 * (1 - np.cos(2 * np.pi * 3.0 * t)) * 1e-3
+    for name, sep in (("f.dat", " "), ("f.txt", ","), ("g.txt", "\t")):
+        p = tmp_path / name
+        p.write_text(f"Friction [N]{sep}Position [mm]\n" + "".join(f"{a:.9g}{sep}{b:.9g}\n" for a, b in zip(F, t)))
+        code, _, err = run(["diagnose", p, "--rate", "2000", "--stiffness", "1000", "-o", tmp_path / name[0],
+                            "--no-plots", "-q"], capsys)
+        assert "card" not in err, err
+
+
+def test_an_output_directory_that_cannot_be_made_is_one_line(tmp_path, capsys):
+    code, _, err = run(["run", "lieng1", LIENG1, "-o", "/proc/lieng_no_such_dir", "--no-plots"], capsys)
+    one_line_error(code, err, "-o /proc/lieng_no_such_dir")

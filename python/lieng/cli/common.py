@@ -32,17 +32,19 @@ def _plots(name, res, outdir, *more):
 
 
 def _is_table(path) -> bool:
-    """A delimited table with a header naming a time column (comma, TAB,
-    semicolon or whitespace), rather than a card deck.  A path that is not a
-    readable regular file is an error here (a FIFO is never opened)."""
+    """A delimited table rather than a card deck: a .csv or .tsv file, or a
+    first line with a comma, semicolon or TAB, or with words (a header, a
+    comment, an instrument's metadata): a deck's cards hold numbers in fixed
+    columns separated by blanks.  A path that is not a readable regular file
+    is an error here (a FIFO is never opened)."""
     from lieng.io.inputs import head, split_lines
 
     p = Path(path)
     first = split_lines(head(p))[0]
-    if p.suffix.lower() in (".csv", ".tsv"):
+    if p.suffix.lower() in (".csv", ".tsv") or re.search(r"[,;\t]", first):
         return True
-    cells = [c.strip().lower() for c in re.split(r"[,;\t]|\s+", first) if c.strip()]
-    return any(c in ("t", "time") or c.startswith(("t[", "t(", "time[", "time(")) for c in cells)
+    words = re.sub(r"[-+]?(\d+\.?\d*|\.\d+)([eEdD][-+]?\d+)?", " ", first)
+    return bool(re.search(r"[A-Za-z#]", words))
 
 
 def _cell(v):

@@ -223,7 +223,10 @@ def staged_outdir(outdir, force: bool = False, keep: Sequence[str] = ()):
                                       f"output directory only when it is new or its own: move it away or choose "
                                       f"another directory") from None
     base = target if target.is_dir() else _existing_ancestor(target.absolute(), "-o", outdir)
-    tmp = Path(tempfile.mkdtemp(prefix=".lieng-staging.", dir=base))
+    try:
+        tmp = Path(tempfile.mkdtemp(prefix=".lieng-staging.", dir=base))
+    except OSError as e:
+        raise LiengInputError(f"-o {outdir}: cannot write in {base} ({e.strerror or e})") from None
     try:
         yield tmp
         names = sorted(f.name for f in tmp.iterdir())
