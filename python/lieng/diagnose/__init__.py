@@ -40,6 +40,12 @@ FN_UNCERTAINTY = 0.05
 FN_UNCERTAINTY_DURATION = 0.15
 #: a --fn further than this from the slips' estimate is questioned
 FN_CHECK = 0.20
+#: fewer baseline replicates than this calibrate nothing (:func:`.decide.decide` reads a candidate on
+#: five or more): the answer is then `unexplained`, never `none`
+MIN_REPLICATES = 5
+#: a slip lasts about half a natural period (longer where the friction falls with speed): slips shorter
+#: than this many natural periods of a given --fn say that --fn is wrong
+SLIP_SHORTEST = 0.2
 #: the twin-branch evidence is read only when the record's slips last no
 #: longer than the baseline's replicates', beyond this fraction (shorter slips
 #: are what a decelerating branch above the accelerating one makes: the
@@ -184,7 +190,10 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
                         "held_out_error_baseline": None, "held_out_error_extended": None,
                         "extension": "none (no stick-slip to simulate)"}) for k in named]
     reason = (f"{c_n} stick-slip cycles found: the record does not show stick-slip (no drop faster than the rise "
-              f"before it)")
+              f"before it)" if c_n == 0 else
+              f"only {c_n} stick-slip cycle{'s' if c_n > 1 else ''} found (a drop faster than the rise before it, "
+              f"from a peak to a trough within one stroke): too few to diagnose (4 or more are needed: a longer "
+              f"record)")
     if aux["levels"].size >= 4:
         tr = aux["travel"][np.isfinite(aux["travel"])]
         rs = aux["ramp_slope"][np.isfinite(aux["ramp_slope"])]
@@ -265,6 +274,10 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                      f"stiffness x drive velocity while the slider sticks); give --stiffness to set it")
     if fn is not None:
         check_fn(rec, fn, f"--fn {fn:g} Hz", "--fn (Hz)")
+        dur = slip_seconds(pr, find_cycles(pr, None))
+        if dur is not None and dur * fn < SLIP_SHORTEST:
+            warnings.append(f"the slips last {dur:.3g} s, {dur * fn:.2g} of a natural period at --fn {fn:g} Hz: a "
+                            f"slip lasts about half a period (fn about {0.5 / dur:.3g} Hz): check --fn (Hz)")
     c0 = find_cycles(pr, fn)
     fd, fse, nsl = estimate_fn(pr, c0, fn) if c0.n >= 3 else (None, None, 0)
     if fd is not None and not (fd * pr.dt < 0.2):
@@ -458,6 +471,12 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         effect = named[0]
         reason = "; ".join(f"{k}: size {rows[k]['effect_size']:+.3g} (margin {MARGIN[k]}), p = {rows[k]['p']:.2g}"
                            for k in named) + f" (Holm, family-wise {ALPHA})"
+    elif nrep < MIN_REPLICATES:
+        # nothing could be calibrated: "none" would say the baseline explains the record
+        effect = "unexplained"
+        reason = (f"the fitted baseline does not stick-slip like the record: only {nrep} of its {replicates} "
+                  f"replicates showed three cycles or more, so no evidence could be calibrated (check --fn, "
+                  f"--stiffness and the record's units)")
     elif misfit(aux["gof"], null):
         effect = "unexplained"
         reason = ("the baseline misses beyond its noise and no candidate accounts for it: " +
@@ -473,6 +492,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         best = min((k for k in CANDIDATES if rows[k]["applicable"]), key=lambda k: rows[k]["p"], default=None)
         reason = ("no candidate both significant and above its relevance margin: the baseline explains the record "
                   "within its noise" + (f" (smallest p: {best}, {rows[best]['p']:.2g})" if best else ""))
+    if named and not g0.get("parts"):
+        warnings.append(f"the gain is not measured: {c.n} cycles leave none to hold out (gain 0 in the outputs); "
+                        f"{named[0]} is named on its calibrated evidence alone")
     if nrep < 10:
         warnings.append(f"only {nrep} baseline replicates could be analysed: the calibration is coarse")
     creep = {"creep_before_slip": {"record": st["creep"], "record_se": se["creep"],
