@@ -416,3 +416,13 @@ def test_a_txt_or_dat_table_without_a_time_column_is_no_deck(tmp_path, capsys):
 def test_an_output_directory_that_cannot_be_made_is_one_line(tmp_path, capsys):
     code, _, err = run(["run", "lieng1", LIENG1, "-o", "/proc/lieng_no_such_dir", "--no-plots"], capsys)
     one_line_error(code, err, "-o /proc/lieng_no_such_dir")
+
+
+def test_two_columns_of_one_name_are_refused(tmp_path, capsys):
+    """Two columns named alike (`F [N]` twice): which one is the friction?
+    Refused by name, not the second silently read (found by the audit)."""
+    p = tmp_path / "dup.csv"
+    p.write_text("t [s],F [N],F [N]\n" + "".join(f"{i * 1e-3},{0.001 * i},{0.002 * i}\n" for i in range(200)))
+    code, _, err = run(["diagnose", p, "--stiffness", "1000", "--v0", "1", "-o", tmp_path / "o"], capsys)
+    one_line_error(code, err, "columns 2 and 3")
+    assert not (tmp_path / "o").exists()

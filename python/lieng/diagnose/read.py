@@ -280,6 +280,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             stem, suffix = name.rsplit("_", 1)
             if suffix and any(suffix.lower() in units_of for units_of in (_LENGTH, _VELOCITY, _TIME, _FORCE)):
                 role, unit = _role(stem, suffix), suffix
+        if role and tab.names.count(name) > 1:
+            where = [str(i + 1) for i, m in enumerate(tab.names) if m == name]
+            _fail(f"{path}: header: columns {' and '.join(where)} are both named {name!r}: rename one (which is "
+                  f"the {role} channel?)")
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
     if rate is not None and not (math.isfinite(rate) and 1.0 / DT_RANGE[1] <= rate <= 1.0 / DT_RANGE[0]):
