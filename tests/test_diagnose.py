@@ -1108,3 +1108,18 @@ def test_a_quantised_position_column_gives_a_smooth_drive(tmp_path):
     mid = slice(rec.t.size // 20, -rec.t.size // 20)
     assert np.max(np.abs(rec.vd[mid] / 2.0 - 1.0)) < 0.1
     assert any("steps of 0.1 mm" in s for s in rec.notes), rec.notes
+
+
+def test_steady_sliding_keeps_the_sign_of_its_level():
+    """Steady sliding (no sticks, no slips): x holds a positive level while
+    the drive moves forward, so it is written with the drive and not turned
+    (the sign had been left to the noise's; found by the audit)."""
+    from lieng.diagnose.segment import prepare
+
+    t = np.arange(20000) * 5e-4
+    for seed in range(4):
+        x = 0.8 + 0.007 * np.random.default_rng(seed).standard_normal(t.size)
+        for sign in (1.0, -1.0):
+            pr = prepare(record_from_arrays(t, sign * x, sign * 1.0))
+            assert not pr.flipped and np.median(pr.x) > 0.7
+        assert prepare(record_from_arrays(t, -x, 1.0)).flipped

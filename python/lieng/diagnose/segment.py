@@ -207,6 +207,13 @@ def _turned(xs, vd, dt) -> bool:
                 return False
             if hi > TAIL_RATIO * lo > 0:
                 return True
+        # no sticks and no slips to read (steady sliding): the level the spring holds while the drive
+        # moves has the drive's sign, where it stands clear of its spread
+        lev = np.concatenate(xs)[mv]
+        if lev.size >= 20:
+            m, iqr = float(np.median(lev)), float(np.subtract(*np.percentile(lev, [75, 25])))
+            if abs(m) > 2.0 * iqr:
+                return m < 0
     return bool(np.median(q) < 0) if q.size else False
 
 
