@@ -307,7 +307,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                          + (f"; their arcs alone say {fd:.4g} Hz" if fd is not None else "") + ")")
         elif fd is not None:
             fn_used, src = fd, "estimated from the slips' arcs"
-            u_fn = max(FN_UNCERTAINTY_DURATION, 3 * (fse or 0.0) / fd)
+            # (at most 50 %, the widest --fn-uncertainty: the replicates' fn is drawn within it and stays > 0)
+            u_fn = min(max(FN_UNCERTAINTY_DURATION, 3 * (fse or 0.0) / fd), 0.5)
         else:
             raise LiengInputError(f"{rec.source}: the natural frequency cannot be fixed from the slips "
                                   f"({nsl} usable): give --fn (Hz)")
