@@ -39,6 +39,8 @@ VARIANTS = {
                                                  "t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
     "metadata, then a unit row under the header": "Test\tstick-slip\nTime\tForce\ns\tN\n"
                                                   + _rows(lambda a, b: f"{a}\t{b}\n"),
+    "a logger's date-time stamps": "Timestamp,F [N]\n" + _rows(lambda a, b: f"2024-03-01 10:22:{1 + a:06.3f},{b}\n"),
+    "ISO date-times with a T": "Date_Time;F [N]\n" + _rows(lambda a, b: f"2024-03-01T23:59:{58 + a:06.3f};{b}\n"),
 }
 
 

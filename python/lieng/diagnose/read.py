@@ -44,7 +44,7 @@ MAX_SAMPLES = 5_000_000
 MIN_SAMPLES = 50
 
 _NAMES = {
-    "t": ("t", "time"),
+    "t": ("t", "time", "timestamp", "datetime", "date_time"),
     "x": ("x", "disp", "displacement", "extension", "spring"),
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity"),
@@ -300,7 +300,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         _fail(f"{path}: {n} samples: too short for stick-slip analysis (at least {MIN_SAMPLES})")
     if n > MAX_SAMPLES:
         _fail(f"{path}: {n} samples: more than the {MAX_SAMPLES} this command reads; cut the record")
-    if "t" in cols:
+    if "t" in cols and cols["t"][0] in tab.dates:
+        t = cols["t"][1]                  # date-times: seconds from the first row's
+    elif "t" in cols:
         t = cols["t"][1] * _scale(path, cols["t"][0], units["t"], _TIME, "time")
     else:
         t = np.arange(n) / float(rate)
@@ -311,6 +313,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
     notes = [mu_note] if mu_note else []
+    if "t" in cols and cols["t"][0] in tab.dates:
+        notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
         notes.append(f"--rate ignored: the record gives the time (column {cols['t'][0]})" if "t" in cols else
                      f"no time column: the rows are samples {1.0 / rate:.4g} s apart (--rate {rate:g} Hz)")

@@ -44,6 +44,9 @@ class Table:
         #: lines of text before the header that are not part of the table
         #: (an instrument's metadata: "Operator: ...", "Date: ...")
         self.preamble = 0
+        #: columns of date-times (``2024-03-01 10:22:01.250``), read as
+        #: seconds from the first row's: name -> that first date-time
+        self.dates = {}
 
     def __len__(self):
         return len(self.lines)
@@ -72,6 +75,21 @@ def _name_unit(cell: str) -> tuple:
     if m:
         return m.group(1), m.group(2)
     return cell, ""
+
+
+#: a logger's date-time stamp: ISO 8601 date, a blank or T, the time of day to any fraction of a second
+_DATETIME = re.compile(r"^\s*(\d{4}-\d{2}-\d{2})[ T](\d{2}:\d{2}:\d{2}(?:[.,]\d+)?)\s*$")
+
+
+def _datetime_ns(cell: str):
+    """A date-time cell as integer nanoseconds, or None when it is not one."""
+    m = _DATETIME.match(cell)
+    if not m:
+        return None
+    try:
+        return int(np.datetime64(f"{m.group(1)}T{m.group(2).replace(',', '.')}", "ns").astype(np.int64))
+    except ValueError:
+        return None
 
 
 def _number(cell: str, decimal_comma: bool) -> float:
@@ -255,6 +273,7 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
                     start = k1 + 1
     data, lines = [], []
     dropped = 0
+    dates = {}                            # column -> its first date-time (ns): the others are seconds from it
     for r in range(start, len(rows)):
         row = rows[r]
         if not row.strip() or _is_comment(row):
@@ -271,10 +290,16 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
                 vals = None
                 break
             try:
+                if c in dates:
+                    raise ValueError(cell)
                 val = _number(cell, comma)
             except ValueError:
-                raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell[:40]!r} is not a "
-                                      f"number") from None
+                ns = _datetime_ns(cell) if c in dates or not data else None
+                if ns is None:
+                    raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell[:40]!r} is not a "
+                                          f"number" + (" (nor a date-time like its first row's)" if c in dates
+                                                       else "")) from None
+                val = (ns - dates.setdefault(c, ns)) * 1e-9
             if not math.isfinite(val):
                 if missing == "drop" and math.isnan(val):
                     vals = None
@@ -296,6 +321,7 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
     tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
     tab.dropped = dropped
     tab.preamble = skipped
+    tab.dates = {names[c]: str(np.datetime64(ns, "ns")) for c, ns in dates.items()}
     return tab
 
 
