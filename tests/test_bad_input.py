@@ -426,3 +426,29 @@ def test_two_columns_of_one_name_are_refused(tmp_path, capsys):
     code, _, err = run(["diagnose", p, "--stiffness", "1000", "--v0", "1", "-o", tmp_path / "o"], capsys)
     one_line_error(code, err, "columns 2 and 3")
     assert not (tmp_path / "o").exists()
+
+
+def test_coarse_reciprocating_sliding_prints_no_nan(tmp_path, capsys):
+    """Steady sliding on a reciprocating stage sampled so coarsely that each
+    reversal lies within one sample: the presliding ramp is not resolved,
+    which the report says in words (it printed 'ramp slope nan'), and the
+    level keeps its sign (the reversal's fast rise in the new direction was
+    taken for the slips' tail; found by the black-box audit)."""
+    g = np.random.default_rng(2)
+    t = np.arange(2715) / 50.0
+    ph = t % 1.0
+    pos = np.where(ph < 0.5, 10.0 * ph, 5.0 - 10.0 * (ph - 0.5))   # 10 mm/s, 25 samples a stroke
+    F = np.empty(t.size)                                         # a stiff contact: 2 N a sample, clipped at 1.22
+    f = 0.0
+    for j in range(t.size):
+        f = min(max(f + 10.0 * (pos[j] - pos[j - 1] if j else 0.0), -1.22), 1.22)
+        F[j] = f
+    F = F + 0.002 * 1.22 * g.standard_normal(t.size)
+    p = tmp_path / "recip.csv"
+    p.write_text("Time [s],Friction [N],Position [mm]\n"
+                 + "".join(f"{a:.2f},{b:.6f},{c:.4f}\n" for a, b, c in zip(t, F, pos)))
+    code, stdout, err = run(["diagnose", p, "--stiffness", "1000", "-o", tmp_path / "o", "--no-plots"], capsys)
+    assert code == 0, err
+    finite_outputs(tmp_path / "o", stdout)
+    assert "nan" not in stdout.lower() and "nan" not in (tmp_path / "o" / "report.md").read_text().lower()
+    assert "at a level of 1.22 mm" in stdout and "its sign was turned" not in stdout

@@ -201,8 +201,9 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
                    f"(friction over stiffness)")
         if tr.size:
             reason += (f"; after each reversal x reaches 90 % of that level after {np.median(tr):.3g} mm of drive "
-                       f"travel (ramp slope {np.median(rs):.3g} mm of x per mm of travel: 1 would be a rigid "
-                       f"stick behind the given spring)")
+                       f"travel " + (f"(ramp slope {np.median(rs):.3g} mm of x per mm of travel: 1 would be a rigid "
+                                     f"stick behind the given spring)" if rs.size else
+                                     "(within a sample of the reversal: the ramp is not resolved)"))
         if named:
             reason += "; " + "; ".join(f"{k}: {rows[k]['effect_size']:+.3g} of the level, p = {rows[k]['p']:.2g}"
                                        for k in named)

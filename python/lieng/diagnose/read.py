@@ -369,8 +369,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         vd, recorded = vcol, True
     elif pos is not None:
         vd, recorded = _drive_from_position(pos, dt, notes), True
-        if np.ptp(pos) == 0:
-            _fail(f"{path}: column {cols['position'][0]}: the drive never moves")
+        if not np.ptp(pos) > 1e-9:          # a picometre: rounding, not a drive
+            _fail(f"{path}: column {cols['position'][0]}: the drive never moves (its position spans "
+                  f"{float(np.ptp(pos)):.3g} mm)")
     else:
         vd, recorded = np.full_like(t, float(v0)), False
     if not np.any(np.abs(vd) > 0):

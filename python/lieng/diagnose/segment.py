@@ -200,7 +200,10 @@ def _turned(xs, vd, dt) -> bool:
     q = v[mv] / vd[mv]
     share = float(np.mean(q > 0)) if q.size else 0.5
     if max(share, 1.0 - share) < SLOPE_SHARE:
-        d = np.concatenate([np.diff(smooth(xx, dt, 1.0, 0, win=9)) for xx in xs if xx.size > 10] or [np.zeros(0)])
+        # (each stroke's first tenth left out: the spring unloading and loading again through a reversal
+        # rises fast in the new direction, a step that is no slip)
+        d = np.concatenate([np.diff(smooth(xx, dt, 1.0, 0, win=9))[max(3, xx.size // 10):] for xx in xs
+                            if xx.size > 10] or [np.zeros(0)])
         if d.size >= 100:
             lo, hi = -float(np.quantile(d, 0.001)), float(np.quantile(d, 0.999))
             if lo > TAIL_RATIO * hi > 0:
