@@ -620,7 +620,7 @@ def check_fn(rec: Record, fn: float, what: str, fix: str) -> None:
         _fail(f"{what}: the record ({span:.4g} s) spans fewer than 4 natural periods; check {fix} (and the time "
               f"column's unit)")
     if fn * rec.dt > 0.2:
-        _fail(f"{what}: the record has only {1 / (fn * rec.dt):.1f} samples per natural period; at least 5 are "
+        _fail(f"{what}: the record has only {1 / (fn * rec.dt):.3g} samples per natural period; at least 5 are "
               f"needed")
 
 

@@ -73,6 +73,12 @@ def _writable_dir(path: Path, st, not_dir: str, not_writable: str) -> None:
         raise LiengInputError(not_dir)
     if not os.access(path, os.W_OK | os.X_OK):
         raise LiengInputError(not_writable)
+    try:
+        # the permission bits do not tell all (root on a read-only or virtual file system): the staging
+        # directory the outputs are written into will be made here, so make one now and take it away
+        os.rmdir(tempfile.mkdtemp(prefix=".lieng-probe.", dir=path))
+    except OSError as exc:
+        raise LiengInputError(f"{not_writable} ({exc.strerror or exc})") from None
 
 
 def _owned(target: Path) -> set[str]:
