@@ -114,3 +114,16 @@ def test_a_record_without_a_time_column_reads_with_its_sampling_rate(tmp_path):
     q = tmp_path / "plain.csv"
     assert any("--rate ignored" in n for n in read_record(q, v0=1.0, stiffness=K, rate=50.0).notes)
 
+
+
+def test_a_column_of_no_role_neither_refuses_nor_drops_rows(tmp_path):
+    """A temperature column left empty, a comment column of words, a
+    humidity column with gaps: none of them is read, so none refuses the
+    record or drops a force sample (the empty column refused all 200 rows as
+    missing; found by the black-box audit)."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    text = "t [s],F [N],Temperature [C],Comment,Humidity [%]\n" + "".join(
+        f"{T[i]},{F[i]},,{'ok' if i % 2 else 'check grip'},{'' if i % 7 == 0 else 41.5}\n" for i in range(200))
+    r = _read(tmp_path, "extra.csv", text)
+    assert r.t.size == ref.t.size and not any("missing" in n for n in r.notes)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-12)

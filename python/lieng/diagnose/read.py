@@ -162,6 +162,17 @@ def _role(name: str, unit: str = ""):
     return next((r for r in named if fits is None or r in fits), named[0] if named else None)
 
 
+def _column_role(name: str, unit: str = ""):
+    """(role, unit) of a header cell: :func:`_role`, or with the unit as the
+    name's last part ("time_s", "force_mN")."""
+    role = _role(name, unit)
+    if role is None and not unit and "_" in name:
+        stem, suffix = name.rsplit("_", 1)
+        if suffix and any(suffix.lower() in units_of for units_of in (_LENGTH, _VELOCITY, _TIME, _FORCE)):
+            role, unit = _role(stem, suffix), suffix
+    return role, unit
+
+
 def _scale(path, name, unit, table, what):
     u = _unit_key(unit)
     if u not in table:
@@ -270,16 +281,12 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     LiengInputError
         Naming the line and column, or the option, of bad input.
     """
+    # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
-                     missing="drop")
+                     missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None)
     cols, units = {}, {}
     for name, unit in zip(tab.names, tab.units):
-        role = _role(name, unit)
-        if role is None and not unit and "_" in name:
-            # "time_s", "force_mN": the unit as the name's last part
-            stem, suffix = name.rsplit("_", 1)
-            if suffix and any(suffix.lower() in units_of for units_of in (_LENGTH, _VELOCITY, _TIME, _FORCE)):
-                role, unit = _role(stem, suffix), suffix
+        role, unit = _column_role(name, unit)
         if role and tab.names.count(name) > 1:
             where = [str(i + 1) for i, m in enumerate(tab.names) if m == name]
             _fail(f"{path}: header: columns {' and '.join(where)} are both named {name!r}: rename one (which is "

@@ -196,7 +196,7 @@ def _header_after_preamble(rows, content) -> int:
     return h
 
 
-def read_table(path, expect: str, missing: str = "error") -> Table:
+def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
     """Read a delimited numeric table with a header row.
 
     Parameters
@@ -218,6 +218,10 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
         an error naming it, or dropped (the rows kept are counted in
         :attr:`Table.dropped`; more than :data:`MAX_MISSING` of the rows
         is an error all the same).
+    unused : callable, optional
+        ``unused(name, unit)`` true for a column the caller does not read (a
+        temperature, a comment): its cells are not parsed (NaN in the table)
+        and neither a word nor a gap in it refuses or drops a row.
 
     Returns
     -------
@@ -271,6 +275,7 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
                 if not any(units):
                     units = [c.strip("[]() ") for c in cells]
                     start = k1 + 1
+    skip = [bool(unused and unused(n, u)) for n, u in zip(names, units)]
     data, lines = [], []
     dropped = 0
     dates = {}                            # column -> its first date-time (ns): the others are seconds from it
@@ -285,6 +290,9 @@ def read_table(path, expect: str, missing: str = "error") -> Table:
             raise LiengInputError(f"{path}: line {r + 1}: {len(cells)} cells where the header has {ncol}")
         vals = []
         for c in range(ncol):
+            if skip[c]:
+                vals.append(math.nan)
+                continue
             cell = _unquote(cells[c]) if c < len(cells) else ""
             if missing == "drop" and cell.lower() in MISSING:
                 vals = None
