@@ -19,14 +19,15 @@ import numpy as np
 
 from lieng.errors import LiengInputError
 from lieng.io.outputs import finite_json as _finite
-from lieng.diagnose.baseline import Params, calibrate_fn, fit_baseline, pr_like, slip_friction
+from lieng.diagnose.baseline import (CALIBRATION_SAMPLES, Params, calibrate_fn, fit_baseline, pr_like,
+                                     slip_friction)
 from lieng.diagnose.decide import ALPHA, RIVALS, decide, fn_needed, misfit, null_replicates, rivals
 from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics
 from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
-from lieng.diagnose.segment import estimate_fn, find_cycles, prepare, slip_seconds
+from lieng.diagnose.segment import estimate_fn, find_cycles, head, prepare, slip_seconds
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -275,7 +276,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                      f"stiffness x drive velocity while the slider sticks); give --stiffness to set it")
     if fn is not None:
         check_fn(rec, fn, f"--fn {fn:g} Hz", "--fn (Hz)")
-        dur = slip_seconds(pr, find_cycles(pr, None))
+        ph = head(pr, CALIBRATION_SAMPLES)     # (a fixed cost on a long record)
+        dur = slip_seconds(ph, find_cycles(ph, None))
         if dur is not None and dur * fn < SLIP_SHORTEST:
             warnings.append(f"the slips last {dur:.3g} s, {dur * fn:.2g} of a natural period at --fn {fn:g} Hz: a "
                             f"slip lasts about half a period (fn about {0.5 / dur:.3g} Hz): check --fn (Hz)")

@@ -3,6 +3,8 @@ baseline's own replicates (:func:`.decide.misfit`), and the rig's ringing after 
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from lieng.diagnose.segment import Cycles, Prepared, slip_seconds
@@ -20,6 +22,16 @@ GOF_MARGIN = {"slip_duration": 0.25, "peak_spread": 0.10, "period_spread": 0.10,
 #: features of the rig read like GOF but not a miss of the friction model: what rings after each arrest
 #: (a second mode of the rig, :func:`arrest_ringing`), warned about where it departs from the replicates
 RIG = ("arrest_ringing",)
+
+
+@lru_cache(maxsize=4096)
+def _quadratic_basis(n: int) -> np.ndarray:
+    """An orthonormal basis of the quadratics on n equally spaced samples: x
+    less its projection on it is x less its least-squares quadratic (the
+    same residual as np.polyfit's, at a tenth of the cost per stick)."""
+    tt = np.linspace(-1.0, 1.0, n)
+    q, _ = np.linalg.qr(np.column_stack([np.ones(n), tt, tt * tt]))
+    return q
 
 
 def arrest_ringing(pr: Prepared, c: Cycles, fn: float, D: float) -> float:
@@ -43,8 +55,8 @@ def arrest_ringing(pr: Prepared, c: Cycles, fn: float, D: float) -> float:
         r = []
         for i0, i1 in ((a, a + w1), late):
             seg = pr.x[i0:i1]
-            tt = np.arange(seg.size, dtype=float)
-            r.append(float(np.std(seg - np.polyval(np.polyfit(tt, seg, 2), tt))))
+            q = _quadratic_basis(seg.size)
+            r.append(float(np.std(seg - q @ (q.T @ seg))))
         out.append(r[0] - r[1])
     return float(np.median(out)) / D if len(out) >= 3 else 0.0
 

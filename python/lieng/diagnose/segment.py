@@ -315,10 +315,10 @@ def arrest(xl, pi_: int, ti_: int, tol: float) -> int:
     if ti_ - pi_ < 3:
         return ti_
     seg = xl[pi_:ti_ + 1]
-    deep = seg <= seg[0] - ARREST_DEPTH * (seg[0] - seg[-1])
-    up = np.r_[seg[1:] >= seg[:-1], True]
-    # at most ARREST_TRIES local minima are tried (each looks at most the fall's length ahead): linear time
-    for j in np.flatnonzero(deep & up)[:ARREST_TRIES]:
+    # the local minima deep enough before the last sample (which, the lowest, ends the slip when none does);
+    # at most ARREST_TRIES are tried (each looks at most the fall's length ahead): linear time
+    deep_up = (seg[:-1] <= seg[0] - ARREST_DEPTH * (seg[0] - seg[-1])) & (seg[1:] >= seg[:-1])
+    for j in np.flatnonzero(deep_up)[:ARREST_TRIES]:
         if seg[j] <= float(np.min(seg[j:j + max(3, j // 2) + 1])) + tol:
             return pi_ + int(j)
     return ti_
@@ -536,13 +536,17 @@ def stick_ratios(pr: Prepared, c: Cycles, part=STICK_PART, lines_only: bool = Fa
         vd = float(np.mean(pr.vd[seg]))
         if vd <= 0:
             continue
-        co = np.polyfit(pr.t[seg], pr.x[seg], 1)
+        # the least-squares line in closed form (np.polyfit's lstsq costs ten times more, once per stick)
+        ts, xs = pr.t[seg], pr.x[seg]
+        tm = float(np.mean(ts))
+        dtm = ts - tm
+        slope = float(dtm @ (xs - np.mean(xs))) / float(dtm @ dtm)
         if lines_only:
-            scatter = float(np.std(pr.x[seg] - np.polyval(co, pr.t[seg])))
-            if not abs(co[0]) * float(pr.t[seg[-1]] - pr.t[seg[0]]) >= STICK_LINE * scatter:
+            scatter = float(np.std(xs - np.mean(xs) - slope * dtm))
+            if not abs(slope) * float(ts[-1] - ts[0]) >= STICK_LINE * scatter:
                 continue
-        tt.append(float(np.mean(pr.t[seg])))
-        rr.append(co[0] / vd)
+        tt.append(tm)
+        rr.append(slope / vd)
         kk.append(int(k))
     return (np.asarray(tt), np.asarray(rr), np.asarray(kk, int)) if index else (np.asarray(tt), np.asarray(rr))
 
