@@ -324,17 +324,47 @@ def arrest(xl, pi_: int, ti_: int, tol: float) -> int:
     return ti_
 
 
+def _sg_gain(w: int) -> float:
+    """How much of white noise :func:`smooth` (its value, window ``w``) lets through: the kernel's norm."""
+    from scipy.signal import savgol_coeffs
+
+    return float(np.linalg.norm(savgol_coeffs(w, 3 if w > 5 else 2)))
+
+
+def _light(x, dt, fn, win: int, noise: float):
+    """A stroke's trace lightly smoothed for finding its extrema (``win``
+    samples), and the noise the cycle finder's thresholds are read against.
+    Where 8 times the per-sample noise exceeds half the swing (a noisy
+    sensor sampled fast, whose slips the thresholds would not see), the
+    window is doubled, at most to a quarter natural period (without fn, a
+    sixteenth of the stroke), until 8 times the noise it lets through is
+    within half the swing; the thresholds then read that noise."""
+    xl = smooth(x, dt, 1.0, 0, win=win)
+    span = float(np.percentile(xl, 98) - np.percentile(xl, 2))
+    if not 8 * noise > 0.5 * span:
+        return xl, noise
+    wmax = max(int(0.25 / fn / dt) | 1, 7) if fn is not None else max(win, (x.size // 16) | 1)
+    w = win
+    while 8 * noise * _sg_gain(w) > 0.5 * span and 2 * w + 1 <= wmax:
+        w = 2 * w + 1
+    return (xl if w == win else smooth(x, dt, 1.0, 0, win=w)), noise * _sg_gain(w)
+
+
 def find_cycles(p: Prepared, fn: float | None) -> Cycles:
     """The stick-slip cycles of every stroke (see the module docstring)."""
     dt = p.dt
-    light = [smooth(p.x[sl], dt, 1.0, 0, win=5 if fn is None or 0.25 / fn / dt < 9 else
-                    max(5, int(0.08 / fn / dt) | 1)) for sl in p.stroke_slices()]
-    allx = np.concatenate(light)
     noise = noise_level(p.x)
+    base_win = 5 if fn is None or 0.25 / fn / dt < 9 else max(5, int(0.08 / fn / dt) | 1)
+    light, noises = [], []
+    for sl in p.stroke_slices():
+        xl, nl = _light(p.x[sl], dt, fn, base_win, noise)
+        light.append(xl)
+        noises.append(nl)
+    allx = np.concatenate(light)
     peaks, troughs, strk, nxt = [], [], [], []
     vs, acc = [], []
     win = None
-    for k, (s, xl) in enumerate(zip(p.strokes, light)):
+    for k, (s, xl, noise) in enumerate(zip(p.strokes, light, noises)):
         sl = slice(s.j0, s.j0 + s.n)
         xr = p.x[sl]
         if fn is not None:
