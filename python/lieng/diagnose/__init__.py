@@ -478,9 +478,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     elif nrep < MIN_REPLICATES:
         # nothing could be calibrated: "none" would say the baseline explains the record
         effect = "unexplained"
-        reason = (f"the fitted baseline does not stick-slip like the record: only {nrep} of its {replicates} "
-                  f"replicates showed three cycles or more, so no evidence could be calibrated (check --fn, "
-                  f"--stiffness and the record's units)")
+        reason = (f"the fitted baseline does not stick-slip like the record: only {nrep} of its replicates (up to "
+                  f"{replicates} are run) showed three cycles or more, so no evidence could be calibrated (check "
+                  f"--fn, --stiffness and the record's units)")
     elif misfit(aux["gof"], null):
         effect = "unexplained"
         reason = ("the baseline misses beyond its noise and no candidate accounts for it: " +
