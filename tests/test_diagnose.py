@@ -1156,3 +1156,15 @@ def test_a_noisy_fast_sampled_record_keeps_its_cycles():
         c = find_cycles(prepare(record_from_arrays(t, noisy, 2.0)), fn)
         assert c.n >= clean.n - 1, (fn, c.n, clean.n)
         assert np.median(np.diff(t[c.peak_i])) == pytest.approx(np.median(np.diff(t[clean.peak_i])), rel=0.05)
+
+
+@pytest.mark.slow
+def test_a_wildly_wrong_fn_is_never_none():
+    """--fn twenty times too low (a Coulomb slider of 10 Hz read at 0.5 Hz):
+    the slips are questioned in a warning, and the answer is not `none`
+    (which says the baseline explains the record): with no calibration the
+    audit's 47x-off --fn had been `none` on 4 replicates."""
+    t, x, _ = _forced_coulomb(0.0)
+    d = diagnose(record_from_arrays(t, x, 2.0), 0.5)
+    assert d.effect != "none", d.reason
+    assert any("check --fn" in w for w in d.warnings), d.warnings
