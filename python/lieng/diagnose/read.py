@@ -307,7 +307,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         _fail(f"{path}: {n} samples: too short for stick-slip analysis (at least {MIN_SAMPLES})")
     if n > MAX_SAMPLES:
         _fail(f"{path}: {n} samples: more than the {MAX_SAMPLES} this command reads; cut the record")
-    if "t" in cols and cols["t"][0] in tab.dates:
+    dated = "t" in cols and cols["t"][0] in tab.dates
+    if dated:
         t = cols["t"][1]                  # date-times: seconds from the first row's
     elif "t" in cols:
         t = cols["t"][1] * _scale(path, cols["t"][0], units["t"], _TIME, "time")
@@ -320,7 +321,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
     notes = [mu_note] if mu_note else []
-    if "t" in cols and cols["t"][0] in tab.dates:
+    if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
         notes.append(f"--rate ignored: the record gives the time (column {cols['t'][0]})" if "t" in cols else
@@ -375,10 +376,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if vcol is not None:
         vd, recorded = vcol, True
     elif pos is not None:
-        vd, recorded = _drive_from_position(pos, dt, notes), True
         if not np.ptp(pos) > 1e-9:          # a picometre: rounding, not a drive
             _fail(f"{path}: column {cols['position'][0]}: the drive never moves (its position spans "
                   f"{float(np.ptp(pos)):.3g} mm)")
+        vd, recorded = _drive_from_position(pos, dt, notes), True
     else:
         vd, recorded = np.full_like(t, float(v0)), False
     if not np.any(np.abs(vd) > 0):
