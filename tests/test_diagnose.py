@@ -385,6 +385,29 @@ def test_an_effect_beyond_its_own_model_is_reported_not_named():
     assert decide(st, se, null)["twin_branch"]["named"]
 
 
+def test_a_size_with_its_own_test_is_joined_to_the_line_by_the_intersection_union_test():
+    """Triggering is named when both hold: there is a line, and it is in the
+    friction (its own test).  The candidate's p is the larger of the two
+    (Berger 1982), tested at the level Holm gives it: with four other effects
+    significant before it, a size test at p = 0.01 passes (level 0.05 / 4),
+    which a fixed Bonferroni level 0.05 / 8 refused; at 0.03 it does not."""
+    from lieng.diagnose.decide import decide
+    from lieng.diagnose.evidence import CANDIDATES
+
+    rng = np.random.default_rng(2)
+    st = dict.fromkeys(CANDIDATES, 0.0)
+    se = dict.fromkeys(CANDIDATES, 0.01)
+    null = {k: rng.normal(0.0, 0.01, 39) for k in CANDIDATES}
+    for k in ("load_variation", "twin_branch", "static_ageing", "drive_modulation"):
+        st[k] = 0.5
+    st["triggering"] = 0.5
+    for p_size, named in ((0.01, True), (0.03, False)):
+        r = decide(st, se, null, sizes={"triggering": (0.05, 0.01, p_size)})["triggering"]
+        assert r["p"] == pytest.approx(max(p_size, r["p_line"]))
+        assert r["holm_level"] == pytest.approx(0.05 / 4)
+        assert r["line_significant"] and r["named"] is named and r["size_shown"] is named
+
+
 @pytest.mark.parametrize("left_twin,left_load,first", [(0.02, 0.10, "load_variation"),
                                                        (0.08, -0.01, "twin_branch"),
                                                        (0.03, 0.003, "twin_branch")])

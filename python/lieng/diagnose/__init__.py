@@ -381,7 +381,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn, sizes=aux.get("sizes"))
     warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)
     tr = rows["triggering"]
-    if tr.get("significant") and tr.get("size_shown") is False:
+    if tr.get("line_significant") and tr.get("size_shown") is False:
         p_in = f", p = {tr['p_size']:.2g}" if "p_size" in tr else ""
         warnings.append(f"a line at {aux['f_tr']:.4g} Hz is significant, but the slips carry no load modulation "
                         f"distinguishable from 0 there ({tr['effect_size']:.3g}, 95 % interval {tr['interval'][0]:.2g} "

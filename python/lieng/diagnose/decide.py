@@ -28,7 +28,8 @@ fitted extension, at the level Holm gave it; see :func:`rivals`).
 An effect is **named** when it is significant and its size S - m0 (for
 triggering without a normal force: the load modulation the line implies,
 which must also pass its own test, Hotelling's on the slips' line less
-the sticks', at Bonferroni's level ALPHA / m; see :func:`decide`) is at
+the sticks': an intersection-union test, the larger of the two p-values
+entering Holm's ordering; see :func:`decide`) is at
 least the relevance margin stated in
 :data:`.evidence.MARGIN` (and at most the bound its own model allows,
 :data:`.evidence.UPPER`), and its nested extension then predicts the held-out
@@ -204,10 +205,13 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
     (triggering: the load modulation the line implies), and optionally the
     p-value of the size's own test: that size and its interval (+- SIZE_T
     standard errors) are reported, and the effect is named only when the
-    size reaches the margin and its own test passes at Bonferroni's level
-    alpha / m over the m candidates (without a p-value: its 95 % interval
-    lies above 0; ``size_shown`` says which) (the line's test says there
-    is a line; the size's says it is in the friction)."""
+    size reaches the margin and its own test passes too (the line's test
+    says there is a line; the size's, that it is in the friction): the
+    intersection-union test, whose p-value is the larger of the two (``p``;
+    the line's own is ``p_line``), valid at the level Holm's procedure gives
+    it without any further correction (Berger 1982); without a p-value the
+    size's 95 % interval must lie above 0 (``size_shown`` says whether the
+    size passed)."""
     rows = {}
     p_own = p_own or {}
     withheld = withheld or {}
@@ -245,7 +249,9 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
             rows[k].update(statistic_departure=d, effect_size=float(size),
                            interval=[float(size) - SIZE_T * size_se, float(size) + SIZE_T * size_se])
             if p_in:
-                rows[k]["p_size"] = float(p_in[0])
+                # two hypotheses both to be rejected (there is a line; it is in the friction): the
+                # intersection-union test, whose p is the larger of the two, enters Holm's ordering
+                rows[k].update(p_size=float(p_in[0]), p_line=float(p), p=max(float(p), float(p_in[0])))
     # Holm's step-down over the applicable candidates
     app = sorted((r["p"], k) for k, r in rows.items() if r["applicable"])
     m = len(app)
@@ -262,12 +268,14 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         r["margin"] = MARGIN[k]
         r["named"] = bool(r["significant"] and size >= MARGIN[k])
         if "p_size" in r:
-            # the size has its own test (triggering in x: is the line in the friction, not the sensor?): a
-            # second hypothesis outside Holm's ordering, held at Bonferroni's level alpha / m, the strictest
-            r["size_level"] = alpha / max(m, 1)
+            # the size has its own test (triggering in x: is the line in the friction, not the sensor?),
+            # joined to the line's by the intersection-union test: both at the level Holm gave the candidate
+            r["size_level"] = r.get("holm_level", alpha / max(m, 1))
             r["size_shown"] = r["p_size"] <= r["size_level"]
+            r["line_significant"] = r["p_line"] <= r["size_level"]
         elif "statistic_departure" in r:
             r["size_shown"] = r["interval"][0] > 0
+            r["line_significant"] = r["significant"]
         if not r.get("size_shown", True):
             r["named"] = False
         if r["named"] and k in UPPER and size > UPPER[k]:
