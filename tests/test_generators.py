@@ -34,3 +34,25 @@ def test_every_case_of_every_generator_is_diagnosed(tmp_path, gen, case):
     d = diagnose(rec, a.fn, replicates=19, budget=10.0)
     assert d.effect in KNOWN
     json.dumps(d.to_json(), allow_nan=False)
+
+
+@pytest.mark.slow
+def test_slips_slower_than_fn_are_read_for_a_twin_and_faster_ones_are_not(tmp_path):
+    """A friction that grows through each slip (the elastoplastic
+    generator's flash-temperature twin branch) makes the slips swing slower
+    than the given fn: the twin is still read, and named.  Slips that swing
+    faster say fn is given too low, which parts the reverse construction's
+    branches like a twin: withheld.  Too high an fn parts them the other way
+    (a negative statistic), which the one-sided test never names."""
+    from lieng.analysis.synth import synthesize
+    from lieng.diagnose import diagnose, read_record, record_from_arrays
+
+    truth = GENS["elastoplastic"].write_record("twin_branch", 0, str(tmp_path), "clean")
+    a = B.parse_args(truth["args"])
+    d = diagnose(read_record(truth["file"], v0=a.v0, stiffness=a.stiffness), a.fn)
+    assert d.fn_data < 0.75 * a.fn and "twin_branch" in [e["effect"] for e in d.effects]
+    rec = synthesize("none", 0)
+    r = record_from_arrays(rec.t, rec.x, rec.v0_col if rec.v0_col is not None else rec.v0, rec.y)
+    low, high = diagnose(r, 0.7 * rec.fn), diagnose(r, 1.35 * rec.fn)
+    assert "swing" in low.evidence["twin_branch"]["withheld"]
+    assert high.evidence["twin_branch"]["statistic"] < 0 and not high.evidence["twin_branch"]["named"]

@@ -338,12 +338,22 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     # (slips that fit no single arc frequency, with fn given, are read as they are: the evidence
     # assumes no arc shape, and the replicates carry what the shape does to it)
     if not withheld and nsl >= 3 and fd is not None and abs(fd / fn_used - 1.0) > 0.25:
+        # Slips that swing faster than fn say that fn is given too low, and the reverse construction at too
+        # low an fn parts its branches exactly like a twin branch (F = x + x''/wn**2 overweights x''): the
+        # twin evidence is withheld.  Slips that swing slower are what a twin branch itself does (friction
+        # that grows through the slip) or what too high an fn looks like, and too high an fn parts the
+        # branches the other way (the one-sided test cannot be faked by it): read, and said.
         # (the load is still read: a load that follows the motion changes the stiffness the slips swing on,
         # so slips off fn are what it does; its evidence is the friction's relation with the measured channel)
         why = f"the slips swing at {fd:.4g} Hz, not near fn = {fn_used:.4g} Hz"
-        withheld = {"twin_branch": why}
-        warnings.append(why + ": the twin-branch evidence is withheld (check --fn; a load that follows the motion "
-                              "also moves the slips' frequency)")
+        if fd > fn_used:
+            withheld = {"twin_branch": why}
+            warnings.append(why + ": the twin-branch evidence is withheld (check --fn; a load that follows the "
+                                  "motion also moves the slips' frequency)")
+        else:
+            warnings.append(why + " (check --fn): slower, as a friction that grows through each slip (a twin "
+                                  "branch) or a load that follows the motion makes them; the twin-branch evidence "
+                                  "is read by the reverse construction at fn")
     if 1.0 / (fn_used * pr.dt) < 15:
         warnings.append(f"{1.0 / (fn_used * pr.dt):.1f} samples per natural period: the slip-shape evidence is "
                         f"weak below about 20")
