@@ -1191,3 +1191,51 @@ def test_a_wildly_wrong_fn_is_never_none():
     d = diagnose(record_from_arrays(t, x, 2.0), 0.5)
     assert d.effect != "none", d.reason
     assert any("check --fn" in w for w in d.warnings), d.warnings
+
+
+def _twin_coulomb(delta, fn=10.0, v0=2.0, fs=1.0, fk=0.6, seconds=6.0):
+    """A Coulomb slider whose kinetic friction rises by ``delta`` once the
+    sliding speed has peaked in each slip (a twin branch, ch. 4.1), stepped
+    by semi-implicit Euler at 40 kHz (plain NumPy, no lieng code), sampled
+    at 2 kHz."""
+    wn, h = 2 * math.pi * fn, 1.0 / 40000
+    n = int(seconds / h)
+    x, xd, stick, late = 0.3, v0, True, False
+    out = np.empty(n // 20)
+    for i in range(n):
+        if stick:
+            x += v0 * h
+            if x >= fs:
+                stick, late = False, False
+        else:
+            f = fk + (delta if late else 0.0)
+            acc = wn * wn * (f - x)
+            late = late or acc > 0          # x'' changes sign where the sliding speed v0 - x' peaks
+            xd += h * acc
+            x += h * xd
+            if xd >= v0:
+                stick, xd = True, v0
+        if i % 20 == 0:
+            out[i // 20] = x
+    return np.arange(out.size) * 20 * h, out + 0.001 * np.random.default_rng(0).standard_normal(out.size)
+
+
+def test_the_twin_step_barely_follows_an_error_of_fn(monkeypatch):
+    """The twin step is read beside each slip's own first-order frequency
+    error, so a fn 5 % off moves it by a fraction of what it moves the step
+    of arcs pinned to fn (which reads the error as a step), and at the right
+    fn both read the step the slider was given (0.08 on a drop of 0.8)."""
+    import lieng.diagnose.evidence as ev
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    for delta in (0.0, 0.08):
+        t, x = _twin_coulomb(delta)
+        pr = prepare(record_from_arrays(t, x, 2.0))
+        c = find_cycles(pr, 10.0)
+        read = {}
+        for free in (True, False):
+            monkeypatch.setattr(ev, "TWIN_FREE_SAMPLES", 20 if free else 10 ** 9)
+            read[free] = [ev._twin_arcs(pr, c, f)[0] for f in (9.5, 10.0, 10.5)]
+            assert read[free][1] == pytest.approx(delta, abs=0.01)
+        shift = lambda r: max(abs(r[0] - r[1]), abs(r[2] - r[1]))
+        assert shift(read[True]) < 0.25 * shift(read[False]), read
