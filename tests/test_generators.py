@@ -56,3 +56,20 @@ def test_slips_slower_than_fn_are_read_for_a_twin_and_faster_ones_are_not(tmp_pa
     low, high = diagnose(r, 0.7 * rec.fn), diagnose(r, 1.35 * rec.fn)
     assert "swing" in low.evidence["twin_branch"]["withheld"]
     assert high.evidence["twin_branch"]["statistic"] < 0 and not high.evidence["twin_branch"]["named"]
+
+
+@pytest.mark.slow
+def test_a_reciprocating_record_with_one_slip_per_stroke_has_its_gain_measured(tmp_path):
+    """Where the sticks are mostly at the reversals (20 strokes, 24 slips:
+    the elastoplastic generator's reciprocating ageing record), the held-out
+    part has hardly a slip followed by another in its stroke; each stroke's
+    first slip is then predicted from the stroke's start through the
+    reversal's dwell, and the ageing extension's gain is measured there (it
+    was "not measured": gain 0)."""
+    from lieng.diagnose import diagnose, read_record
+
+    truth = GENS["elastoplastic"].write_record("static_ageing", 3, str(tmp_path), "spikes")
+    a = B.parse_args(truth["args"])
+    d = diagnose(read_record(truth["file"], v0=a.v0, stiffness=a.stiffness), a.fn)
+    assert not any("not measured" in w for w in d.warnings), d.warnings
+    assert d.effect == "static_ageing" and d.gain_interval[0] > 0, (d.effect, d.gain_interval)

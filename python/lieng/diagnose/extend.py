@@ -189,7 +189,12 @@ class Judge:
     slip (over D) against the record's; e = sqrt(mean of the per-cycle
     squares + mean of the waveform's squares [+ the normal channel's
     unlocked part]).  A trajectory that parts from the record's (rounding,
-    chaos, a noisy rig) costs one cycle, not the rest of the record."""
+    chaos, a noisy rig) costs one cycle, not the rest of the record.  A
+    reciprocating record whose sticks are mostly at the reversals (fewer
+    slips followed by another in their stroke than strokes) is also judged on
+    each stroke's first slip, the model started from the record's x at the
+    stroke's start and run through the reversal (that stick time over the
+    mean of the record's own)."""
 
     #: at most this many cycles are judged (an even subset; linear time)
     MAX_CYCLES = 200
@@ -201,23 +206,43 @@ class Judge:
         per = c.periods(pr.t)
         self.P = float(np.mean(per)) if per.size else 1.0 / fn
         k = np.flatnonzero(c.next_ok)
+        # a reciprocating record whose sticks are mostly at the reversals (fewer slips followed by another
+        # in the same stroke than strokes) is also judged on each stroke's first slip, predicted from the
+        # stroke's start (the model started from the record's state there, as :func:`.baseline.simulate`
+        # starts it) through the reversal and its dwell, where ageing shows on such a rig
+        self.from_stroke = len(pr.strokes) > 1 and k.size < np.unique(c.stroke).size
         k = k[(pr.t[c.trough_i[k]] >= lo) & (pr.t[c.peak_i[k + 1]] < hi)]
         if k.size > self.MAX_CYCLES:
             k = k[np.linspace(0, k.size - 1, self.MAX_CYCLES).astype(int)]
         ends = np.array([sl.stop for sl in pr.stroke_slices()])
-        i0 = c.trough_i[k]
-        span = c.trough_i[k + 1] - i0
-        self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, k)]
-        # each prediction starts from the stick line's level at the trough (:func:`stick_start`)
+        # (each row: the sample it starts from, the cycle whose slip it predicts, where it starts)
+        i0, tgt = c.trough_i[k], k + 1
+        # each within-stroke prediction starts from the stick line's level at the trough (:func:`stick_start`)
         # (on the record's drive; a model with a modulated drive reads it on its own drive)
         self.start = [stick_start(pr, c, int(j)) for j in k]
+        first = np.array([], int)
+        if self.from_stroke:
+            first = np.array([int(np.flatnonzero(c.stroke == s)[0]) for s in np.unique(c.stroke)], int)
+            j0 = np.array([pr.strokes[int(c.stroke[j])].j0 for j in first], int)
+            keep = (pr.t[j0] >= lo) & (pr.t[c.trough_i[first]] < hi) & (c.peak_i[first] > j0)
+            first, j0 = first[keep][:self.MAX_CYCLES], j0[keep][:self.MAX_CYCLES]
+            i0, tgt = np.r_[i0, j0].astype(int), np.r_[tgt, first].astype(int)
+            self.start += [float(pr.x[a]) for a in j0]
         self._k = k
+        span = c.trough_i[tgt] - i0
+        self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, tgt)]
         t, x = pr.t, pr.x
         self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
-        slips = [_slip(t, x, int(c.peak_i[j + 1]), int(c.trough_i[j + 1]) + 1, self.tau) for j in k]
-        tslip = np.array([ts for ts, _ in slips])
-        self.rec = np.column_stack([(tslip - t[i0]) / self.P, x[c.peak_i[k + 1]] / self.D,
-                                    x[c.trough_i[k + 1]] / self.D])
+        slips = [_slip(t, x, int(c.peak_i[j]), int(c.trough_i[j]) + 1, self.tau) for j in tgt]
+        tslip = np.array([ts for ts, _ in slips]) - t[i0] if slips else np.zeros(0)
+        # the stick time over its scale: the mean period within a stroke; from a stroke's start, the mean of
+        # the record's times to a stroke's first slip
+        self.scale = np.full(tslip.size, self.P)
+        if first.size:
+            s0 = float(np.mean(tslip[k.size:]))
+            self.scale[k.size:] = s0 if s0 > 0 else self.P
+        self.rec = np.column_stack([tslip / self.scale, x[c.peak_i[tgt]] / self.D, x[c.trough_i[tgt]] / self.D]) \
+            if tslip.size else np.zeros((0, 3))
         waves = [w for _, w in slips if w is not None]
         self.wave = np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan)
         self.mask = (pr.t >= lo) & (pr.t < hi)
@@ -236,19 +261,20 @@ class Judge:
         t = pr.t
         pred = np.empty_like(self.rec)
         waves = []
-        starts = self.start if not p.drv_a else [stick_start(pr, self.c, int(j), p) for j in self._k]
+        starts = self.start if not p.drv_a else \
+            [stick_start(pr, self.c, int(j), p) for j in self._k] + self.start[self._k.size:]
         for row, sl in enumerate(self.slices):
             xs, _, state = run_slice(pr, p, self.fn, sl, starts[row], self.ylow)
             slip = np.flatnonzero(state == 0)
             if slip.size == 0:
-                pred[row] = ((t[sl.stop - 1] - t[sl.start]) / self.P, xs[-1] / self.D, xs[-1] / self.D)
+                pred[row] = ((t[sl.stop - 1] - t[sl.start]) / self.scale[row], xs[-1] / self.D, xs[-1] / self.D)
                 continue
             back = slip[0] + np.flatnonzero(state[slip[0]:] == 1)
             end = int(back[0]) if back.size else xs.size - 1
             ip = int(np.argmax(xs[:end + 1]))
             it = ip + int(np.argmin(xs[ip:end + 1]))
             ts, w = _slip(t[sl], xs, ip, it + 1, self.tau)
-            pred[row] = ((ts - t[sl.start]) / self.P, xs[ip] / self.D, xs[it] / self.D)
+            pred[row] = ((ts - t[sl.start]) / self.scale[row], xs[ip] / self.D, xs[it] / self.D)
             if w is not None:
                 waves.append(w)
         dc = self.rec - pred
