@@ -12,10 +12,7 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     accelerating and decelerating halves fitted to x itself: in each slip
     x = c + A cos(wn t) + B sin(wn t) + dF (1 - cos(wn (t - t*))) H(t - t*),
     t* where the sliding speed peaks; c, A, B per slip, dF common (linear
-    least squares slip by slip: no derivatives); dF / D.  From 20 samples
-    per natural period each slip also has a first-order frequency error of
-    its own (columns t cos, t sin): dF is then read from the jump of x'' at
-    t*, which no error of fn makes.  Otherwise the two
+    least squares slip by slip: no derivatives); dF / D.  Otherwise the two
     branches of the characteristic read as the thesis read them
     (ch. 4.1, TRC's reverse construction): in each slip F = x + x''/wn**2
     against the sliding speed s, the decelerating branch minus the
@@ -158,34 +155,14 @@ def slip_reverse_construction(pr: Prepared, c: Cycles, fn: float, k: int):
     return pr.vd[p0:e + 1] - v, xs + (g0 / g2) * a / w ** 2
 
 
-#: from this many samples per natural period the twin step is fitted beside
-#: each slip's own first-order frequency error (:func:`_twin_arcs`)
-TWIN_FREE_SAMPLES = 20
-
-
 def _twin_arcs(pr: Prepared, c: Cycles, fn: float):
-    """The twin step dF (mm) fitted to the slips' x and its jackknife error.
-
-    Each slip is x = c + A cos(wn t) + B sin(wn t) + dF h(t), h = (1 -
-    cos(wn (t - t*))) after t*, the sliding-speed peak.  Where a natural
-    period has TWIN_FREE_SAMPLES samples or more, each slip also gets the
-    columns t cos(wn t), t sin(wn t): an arc of frequency wn (1 + e) is, to
-    first order in e, the arc at wn plus these, so an error of fn (or a
-    slip whose arc stretches as mu(v) bends it) no longer reads as a step;
-    dF is then read from what no smooth arc has, the jump of x'' at t*
-    (h and h' are continuous there, h'' jumps by wn**2).  Its shift per
-    per cent of fn error falls about fivefold."""
     w = 2 * math.pi * fn
-    free = 1.0 / (fn * pr.dt) >= TWIN_FREE_SAMPLES
     num, den = [], []
     for tt, xx, ts in slip_arcs(pr, c):
-        if tt.size < (8 if free else 5):
-            continue
-        cols = [np.ones(tt.size), np.cos(w * tt), np.sin(w * tt)]
-        if free:
-            cols += [tt * np.cos(w * tt), tt * np.sin(w * tt)]
-        B = np.column_stack(cols)
+        B = np.column_stack([np.ones(tt.size), np.cos(w * tt), np.sin(w * tt)])
         h = np.where(tt > ts, 1.0 - np.cos(w * (tt - ts)), 0.0)
+        if tt.size < 5:
+            continue
         Q, _ = np.linalg.qr(B)
         hr = h - Q @ (Q.T @ h)
         xr = xx - Q @ (Q.T @ xx)
