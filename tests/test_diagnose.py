@@ -385,6 +385,29 @@ def test_an_effect_beyond_its_own_model_is_reported_not_named():
     assert decide(st, se, null)["twin_branch"]["named"]
 
 
+def test_the_fn_band_is_read_on_the_record_itself():
+    """A statistic that follows fn is tested at the least favourable fn
+    within the stated uncertainty.  How far it moves is read on the record
+    (its statistic at fn (1 -+ u)), not assumed from the replicates' 1-DoF
+    slider: a record that moves less than they do keeps its evidence, one
+    that moves more (a second mode of the rig) is held to it."""
+    from lieng.diagnose.decide import calibrate
+
+    rng = np.random.default_rng(3)
+    e = rng.uniform(-0.05, 0.05, 39)
+    v = 1.6 * e + rng.normal(0.0, 0.005, 39)          # the replicates: 0.08 per 5 % of fn
+    S = 0.12
+    *_, p_rep, band_rep = calibrate(S, 0.005, v, True, e, 0.05)
+    assert band_rep == pytest.approx(0.08, abs=0.01)
+    *_, p_flat, band_flat = calibrate(S, 0.005, v, True, e, 0.05, readings=(0.15, 0.09))
+    assert band_flat == pytest.approx(0.03) and p_flat < p_rep
+    *_, p_steep, band_steep = calibrate(S, 0.005, v, True, e, 0.05, readings=(0.24, 0.0))
+    assert band_steep == pytest.approx(0.12) and p_steep > 0.4
+    # two-sided: the larger move either way
+    *_, band2 = calibrate(-S, 0.005, v, False, e, 0.05, readings=(-0.10, -0.17))
+    assert band2 == pytest.approx(0.05)
+
+
 def test_a_size_with_its_own_test_is_joined_to_the_line_by_the_intersection_union_test():
     """Triggering is named when both hold: there is a line, and it is in the
     friction (its own test).  The candidate's p is the larger of the two

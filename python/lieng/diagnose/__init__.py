@@ -22,7 +22,8 @@ from lieng.io.outputs import finite_json as _finite
 from lieng.diagnose.baseline import (CALIBRATION_SAMPLES, Params, calibrate_fn, fit_baseline, pr_like,
                                      slip_friction)
 from lieng.diagnose.decide import ALPHA, RIVALS, decide, fn_needed, misfit, null_replicates, rivals
-from lieng.diagnose.evidence import CANDIDATES, MARGIN, ONE_SIDED, SLIDING, sliding_statistics, statistics
+from lieng.diagnose.evidence import (CANDIDATES, MARGIN, ONE_SIDED, SLIDING, fn_readings, sliding_statistics,
+                                     statistics)
 from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
@@ -388,7 +389,11 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                         f"replicates, whose slider is still in stick): a second mode of the rig, which the 1-DoF "
                         f"baseline does not have; it also bends the slips' shape, so read the twin-branch evidence "
                         f"with care")
-    rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn, sizes=aux.get("sizes"))
+    # the band an error of fn within u_fn makes, read on the record itself (the replicates' 1-DoF slider need
+    # not follow fn as the record does)
+    rd = fn_readings(pr, c, fn_used, u_fn, aux["D"], aux.get("ylow"), rec.y_is_force, arcs)
+    rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn, sizes=aux.get("sizes"),
+                  fn_readings=rd)
     warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)
     tr = rows["triggering"]
     if tr.get("line_significant") and tr.get("size_shown") is False:

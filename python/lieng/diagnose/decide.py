@@ -17,10 +17,14 @@ p from the normal distribution (one-sided for effects with a direction).
 A statistic that follows the natural frequency (its replicates' values
 regressed on their drawn fn error: a slope beyond twice its standard error)
 is tested at the least favourable fn within the stated uncertainty u: z =
-(S - m0 - band) / sqrt(max(s0, se)**2 + s0**2 / B), band = u (|slope| + its
-standard error), m0 and s0 from the line at the nominal fn (:func:`calibrate`), so that the false-alarm rate
-holds for every fn within u, the edges too (a user's fn off by exactly u),
-not only on average over them.
+(S - m0 - band) / sqrt(max(s0, se)**2 + s0**2 / B), m0 and s0 from the line
+at the nominal fn (:func:`calibrate`), band the largest shift an fn error
+within u makes: read on the record itself where its statistic can be read
+again at fn (1 -+ u) (the twin branch, a load read from a normal reading:
+the rig need not follow fn as the replicates' 1-DoF slider does), otherwise
+u (|slope| + its standard error); so that the false-alarm rate holds for
+every fn within u, the edges too (a user's fn off by exactly u), not only on
+average over them.
 The family-wise false-alarm rate over the candidates is held at ALPHA by
 Holm's step-down procedure (a load that follows the motion and a twin
 branch both named: each is tested again against replicates of the other's
@@ -165,7 +169,7 @@ def fn_sensitivity(v, e, u: float):
     return m0, s, u * (abs(float(co[1])) + se_b)
 
 
-def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0) -> tuple:
+def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, readings=None) -> tuple:
     """A statistic S with standard error se against the finite replicates'
     values v (module docstring): (m0, s0, S - m0, its standard deviation, z,
     p, band).
@@ -176,12 +180,21 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0) -
     line at the nominal fn less the largest shift an fn error makes, against
     the noise about that line (valid for any true fn within u, not only on
     average over them); the standard deviation returned then spans the band
-    too (d +- 1.96 of it is d +- (band + 1.96 sd))."""
+    too (d +- 1.96 of it is d +- (band + 1.96 sd)).
+
+    ``readings``, the record's own statistic read at fn (1 - u) and
+    fn (1 + u), give the band from the record itself: how far its reading
+    moves when fn is anywhere within u (towards the null: the favourable
+    side for the effect is never credited).  The replicates, a 1-DoF
+    slider, need not follow fn as the record does (a second mode of the
+    rig, a bristle lag)."""
     fit = fn_sensitivity(v, e, u)
     if fit is None:
         m0, s0, band = float(np.mean(v)), float(np.std(v, ddof=1)), 0.0
     else:
         m0, s0, band = fit
+    if readings is not None and all(math.isfinite(r) for r in readings):
+        band = max(S - min(readings), 0.0) if one_sided else max(abs(r - S) for r in readings)
     den = noise_sd(s0, se, v.size)
     d = S - m0
     excess = (d - band if one_sided else math.copysign(max(abs(d) - band, 0.0), d))
@@ -193,13 +206,15 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0) -
 
 
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
-           withheld=None, u_fn: float = 0.0, sizes=None) -> dict:
+           withheld=None, u_fn: float = 0.0, sizes=None, fn_readings=None) -> dict:
     """The evidence table: for every candidate the statistic, the null mean
     and spread, z, p, Holm's decision and whether it is named.
 
     ``p_own`` gives p-values calibrated within the record (a permutation
     test) for some candidates: their effect size is the statistic itself.
     ``withheld`` maps candidates to the reason their evidence is not read.
+    ``fn_readings`` maps candidates to the record's own statistic read at
+    fn (1 -+ u_fn) (:func:`calibrate`).
     ``sizes`` maps candidates to an effect size read on a physical scale
     apart from the statistic the test reads, with its standard error
     (triggering: the load modulation the line implies), and optionally the
@@ -240,9 +255,12 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
                            z=0.0, p=1.0, effect_size=0.0, applicable=False)
             continue
         err = float(se[k]) if math.isfinite(se[k]) else 0.0
-        m0, s0, d, den, z, p, band = calibrate(S, err, v, k in ONE_SIDED, e, u_fn)
+        rd = (fn_readings or {}).get(k)
+        m0, s0, d, den, z, p, band = calibrate(S, err, v, k in ONE_SIDED, e, u_fn, rd)
         rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=err, z=z, p=float(p), effect_size=d, applicable=True,
                        interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band)
+        if rd is not None:
+            rows[k]["fn_readings"] = [float(r) for r in rd]
         if sizes and k in sizes:
             size, size_se, *p_in = sizes[k]
             size_se = float(size_se) if math.isfinite(size_se) else abs(float(size)) + 1.0
@@ -339,7 +357,8 @@ def _given_rival(pr, k, other, other_ext, fn, u_fn, st, row, y_is_force, arcs, y
     v, e = v[fin], e[fin]
     if v.size < 5:
         return None
-    m0, s0, d, _, _, p, _ = calibrate(float(st[k]), row["se"] or 0.0, v, k in ONE_SIDED, e, u_fn)
+    m0, s0, d, _, _, p, _ = calibrate(float(st[k]), row["se"] or 0.0, v, k in ONE_SIDED, e, u_fn,
+                                      row.get("fn_readings"))
     row["given_rival"] = {"rival": other, "null_mean": m0, "null_sd": s0, "effect_size": d, "p": p,
                           "replicates": n2}
     return p, (d if k in ONE_SIDED else abs(d))

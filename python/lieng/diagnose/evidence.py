@@ -88,7 +88,7 @@ from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive
                                      line_fit, lowpass, position_anova, refine_line, spectral_line, y_locked)
 from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_part, stick_ratios, travel
 
-__all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "lowpass"]
+__all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "fn_readings", "lowpass"]
 
 CANDIDATES = ("load_variation", "twin_branch", "static_ageing", "triggering", "drive_modulation",
               "friction_drift", "direction_asymmetry", "position_dependence")
@@ -546,6 +546,22 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
            "p_own": {k: v for k, v in (("drive_modulation", p_drv), ("position_dependence", p_pos),
                                        ("friction_drift", p_lvl)) if v is not None}, "gof": goodness(pr, c, fn, D)}
     return st, se, aux
+
+
+def fn_readings(pr: Prepared, c: Cycles, fn: float, u: float, D: float, ylow=None, y_is_force=False,
+                arcs: bool = True) -> dict:
+    """The slip-shape statistics (twin branch; a load read from a normal
+    reading) read again at fn (1 - u) and fn (1 + u), on the same cycles:
+    how far the record's own reading moves over the stated uncertainty of
+    fn (:func:`.decide.calibrate`); ``ylow`` the low-passed normal channel
+    the record's own reading used."""
+    out = {}
+    fs = (fn * (1.0 - u), fn * (1.0 + u))
+    twin = _twin_arcs if arcs else _twin_rc
+    out["twin_branch"] = tuple(twin(pr, c, f)[0] / D for f in fs)
+    if ylow is not None and not y_is_force:
+        out["load_variation"] = tuple(_load(pr, c, f, ylow, pr.y, False)[0] / D for f in fs)
+    return out
 
 
 #: the candidates read on a record without stick-slip (steady sliding)
