@@ -28,7 +28,7 @@ from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
-from lieng.diagnose.segment import estimate_fn, find_cycles, head, prepare, slip_seconds
+from lieng.diagnose.segment import estimate_fn, find_cycles, head, prepare, reversal_ramp, slip_seconds
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -127,7 +127,9 @@ def _stiffness_from_sticks(pr):
     """The stiffness (N/m) from a force record read with 1 N/m (x holds the
     force in N times 1000, so its rise over the drive while the slider sticks
     is the stiffness): the median stick slope over the drive, or in steady
-    sliding the ramp after each reversal (its steepest fifth)."""
+    sliding the presliding ramp after each reversal (its rise to 90 % of the
+    sliding level over the travel meanwhile, the median over two strokes or
+    more that resolve it); None when neither can be read."""
     from lieng.diagnose.segment import stick_ratios
 
     c = find_cycles(pr, None)
@@ -135,19 +137,18 @@ def _stiffness_from_sticks(pr):
         r = stick_ratios(pr, c)[1]
         if r.size >= 3 and np.median(r) > 0:
             return float(np.median(r))
+    # steady sliding: the presliding ramp after each reversal, its rise to 90 % of the sliding level over
+    # the drive's travel meanwhile (the ramp the report reads, so that it reads a slope of 1 there); a ramp
+    # within one sample's travel is not resolved
     slopes = []
     for s in pr.strokes:
-        x = pr.x[s.j0:s.j0 + s.n]
-        v = pr.vd[s.j0:s.j0 + s.n]
-        if x.size < 20:
+        if s.n < 20:
             continue
-        dx = np.gradient(x, pr.dt)
-        ok = v > 0.5 * np.max(v)
-        if np.count_nonzero(ok) >= 10:
-            q = dx[ok] / v[ok]
-            slopes.append(float(np.percentile(q, 80)))
-    pos = [s for s in slopes if s > 0]
-    return float(np.median(pos)) if pos else None
+        P, x0, L = reversal_ramp(pr, s)
+        step = float(np.median(np.abs(pr.vd[s.j0:s.j0 + s.n]))) * pr.dt
+        if P > x0 and L > step:
+            slopes.append(0.9 * (P - x0) / L)
+    return float(np.median(slopes)) if len(slopes) >= 2 else None
 
 
 def _train_trough(pr, c, sel) -> float:

@@ -86,7 +86,8 @@ from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
 from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit,
                                      line_fit, lowpass, position_anova, refine_line, spectral_line, y_locked)
-from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_arcs, stick_part, stick_ratios, travel
+from lieng.diagnose.segment import (Cycles, Prepared, creep_pairs, reversal_ramp, slip_arcs, stick_part,
+                                    stick_ratios)
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "fn_readings", "lowpass"]
 
@@ -578,15 +579,10 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     level, with block-jackknife errors over the strokes in time order."""
     lv, trav, slope, sign, tmid = [], [], [], [], []
     for s in pr.strokes:
-        sl = slice(s.j0, s.j0 + s.n)
-        x, vd, t = pr.x[sl], pr.vd[sl], pr.t[sl]
-        if x.size < 20:
+        if s.n < 20:
             continue
-        P = float(np.median(x[x.size // 2:]))
-        x0 = float(np.median(x[:3]))
-        tr = travel(vd, np.diff(t))
-        k90 = np.flatnonzero((x - x0) >= 0.9 * (P - x0)) if P > x0 else np.array([], int)
-        L = float(tr[k90[0]]) if k90.size else math.nan
+        P, x0, L = reversal_ramp(pr, s)
+        t = pr.t[s.j0:s.j0 + s.n]
         lv.append(P)
         trav.append(L)
         slope.append(0.9 * (P - x0) / L if L and L > 0 else math.nan)
