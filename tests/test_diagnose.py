@@ -1240,3 +1240,16 @@ def test_a_sliding_force_record_reads_its_stiffness_from_the_reversal_ramps(tmp_
     assert d.effect == "no_stick_slip"
     assert rec.stiffness == pytest.approx(2.0e4, rel=0.02)
     assert np.nanmedian(d.to_json()["sliding"]["ramp_slope"]) == pytest.approx(1.0, abs=0.02)
+
+
+@pytest.mark.slow
+def test_sticks_rising_faster_than_the_drive_are_questioned():
+    """A stuck slider loads the spring at the drive velocity, no faster: the
+    independently stepped Coulomb slider (drive 2 mm/s) read with --v0 0.5
+    rises at 4 times the drive in its sticks, which the report says (a wrong
+    --v0, stiffness or unit); read as it was driven, it says nothing."""
+    t, x, _ = _forced_coulomb(0.0)
+    right, wrong = (diagnose(record_from_arrays(t, x, v0), 10.0, replicates=9, budget=5.0) for v0 in (2.0, 0.5))
+    said = lambda d: [w for w in d.warnings if "times the drive velocity" in w]
+    assert not said(right)
+    assert said(wrong) and "4 times" in said(wrong)[0], wrong.warnings

@@ -28,7 +28,8 @@ from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
-from lieng.diagnose.segment import estimate_fn, find_cycles, head, prepare, reversal_ramp, slip_seconds
+from lieng.diagnose.segment import (estimate_fn, find_cycles, head, prepare, reversal_ramp, slip_seconds,
+                                    stick_ratios)
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -45,6 +46,11 @@ FN_CHECK = 0.20
 #: fewer baseline replicates than this calibrate nothing (:func:`.decide.decide` reads a candidate on
 #: five or more): the answer is then `unexplained`, never `none`
 MIN_REPLICATES = 5
+#: the sticks' rise over the drive beyond which the record is questioned: a
+#: stuck slider loads the spring at the drive velocity (ratio 1; a compliant
+#: contact or creep makes it less), so a quarter faster is a wrong --v0,
+#: --stiffness or unit, not friction
+STICK_FASTEST = 1.25
 #: a slip lasts about half a natural period (longer where the friction falls with speed): slips shorter
 #: than this many natural periods of a given --fn say that --fn is wrong
 SLIP_SHORTEST = 0.2
@@ -362,6 +368,11 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     c = find_cycles(pr, fn_used)
     if c.n < 4:
         return _no_stick_slip(pr, c.n, notes, warnings, fn_used, src, fd, fse)
+    ratio = max((stick_ratios(pr, cc)[1] for cc in (c0, c)), key=np.size)
+    if ratio.size >= 2 and np.median(ratio) > STICK_FASTEST:
+        warnings.append(f"x rises at {np.median(ratio):.3g} times the drive velocity in the sticks (median over "
+                        f"{ratio.size}): a stuck slider loads the spring at the drive velocity, no faster; check "
+                        f"--v0, --stiffness and the record's units (the baseline is fitted as given)")
     base_all = fit_baseline(pr, c, fn_used)
     if pr.y is not None:
         base_all.y_c = y_on_motion(pr.x, c.v, pr.y)
