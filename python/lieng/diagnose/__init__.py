@@ -136,8 +136,6 @@ def _stiffness_from_sticks(pr):
     sliding the presliding ramp after each reversal (its rise to 90 % of the
     sliding level over the travel meanwhile, the median over two strokes or
     more that resolve it); None when neither can be read."""
-    from lieng.diagnose.segment import stick_ratios
-
     c = find_cycles(pr, None)
     if c.n >= 4:
         r = stick_ratios(pr, c)[1]
