@@ -345,7 +345,7 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     """The load modulation a line at ``f`` in x implies (the ``triggering``
     effect size on a physical scale where no normal force is recorded):
     the line's vector in the slips (each slip's own arc a + b tau +
-    e tau**2 + c cos + d sin(wn tau) projected out) less its vector in the sticks' middles (each stick's
+    c cos + d sin(wn tau) projected out) less its vector in the sticks' middles (each stick's
     quadratic projected out: a line the stuck slider shows too is in the
     sensor or the frame, not in the friction), times the slider's response
     |1 - (f / fn)**2| (a friction force modulated at f moves x by its
@@ -364,12 +364,11 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     def scaled(tau):
         return tau / max(float(tau[-1]), 1e-12)
 
-    # a slip's own arc with a trend and (from 12 samples) a quadratic in tau: the friction changes with the
-    # sliding speed through the slip, so its arc is no pure cosine, and the part of that bend a line at f
-    # picks up differs from slip to slip; a coarsely sampled slip, under 8 samples: the arc alone
+    # a slip's own arc (a coarsely sampled slip, under 8 samples: without the trend); a quadratic in tau
+    # beside it read the independent generators' sizes closer to their stated 3-8 % but cost the line's
+    # test power on `lieng synth` (two of six records' p from 0.002 to 0.015), so it is not used
     slip_cols = lambda tau: np.column_stack([np.ones(tau.size), np.cos(wn * tau), np.sin(wn * tau)]
-                                            + ([scaled(tau)] if tau.size >= 8 else [])
-                                            + ([scaled(tau) ** 2] if tau.size >= 12 else []))
+                                            + ([scaled(tau)] if tau.size >= 8 else []))
     stick_cols = lambda tau: np.column_stack([np.ones(tau.size), scaled(tau), scaled(tau) ** 2])
     units = {"slip": [], "stick": []}
     ks = range(c.n) if c.n <= TRIG_UNITS else np.unique(np.linspace(0, c.n - 1, TRIG_UNITS).astype(int))
