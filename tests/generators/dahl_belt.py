@@ -1,8 +1,7 @@
 """Independent record generator: Dahl presliding friction with a velocity-weakening level, belt-driven rig.
 
 Written without reading the diagnosis code; numpy/scipy only.  `write_record(case, seed, outdir, nuisance)`
-(see README.md here for the contract); `python dahl_belt.py OUTDIR [NSEEDS]` writes NSEEDS seeds of every case
-(nuisance = NUISANCES[seed % 7]) and OUTDIR/truth.json.
+(see README.md here for the contract; `tests/benchmarks/bench_diagnose.py` loads it).
 
 The rig
 -------
@@ -52,7 +51,6 @@ import bisect
 import json
 import math
 import os
-import sys
 import time
 import zlib
 
@@ -547,26 +545,3 @@ def write_record(case, seed, outdir, nuisance="clean"):
     return dict(generator=NAME, case=case, seed=int(seed), nuisance=nuisance, file=fout, args=args,
                 fn_true=float(P["fn"]), fn_given=(float(fn_given) if fn_given is not None else None),
                 params=params)
-
-
-def _main(argv):
-    if len(argv) < 2:
-        print("usage: python dahl_belt.py OUTDIR [NSEEDS]")
-        return 2
-    outdir = argv[1]
-    nseeds = int(argv[2]) if len(argv) > 2 else 8
-    truth = []
-    for case in CASES:
-        for seed in range(nseeds):
-            nuis = NUISANCES[seed % len(NUISANCES)]
-            tr = write_record(case, seed, outdir, nuis)
-            truth.append(tr)
-            print("%-17s %3d %-13s %5.2fs %s" % (case, seed, nuis, tr["params"]["seconds"],
-                                                  os.path.basename(tr["file"])), flush=True)
-    with open(os.path.join(outdir, "truth.json"), "w") as fh:
-        json.dump(truth, fh, indent=1)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(_main(sys.argv))
