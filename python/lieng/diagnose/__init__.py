@@ -148,7 +148,7 @@ def _stiffness_from_sticks(pr):
     for s in pr.strokes:
         if s.n < 20:
             continue
-        P, x0, L = reversal_ramp(pr, s)
+        P, x0, L, _ = reversal_ramp(pr, s)
         step = float(np.median(np.abs(pr.vd[s.j0:s.j0 + s.n]))) * pr.dt
         if P > x0 and L > step:
             slopes.append(0.9 * (P - x0) / L)
@@ -401,7 +401,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                         f"with care")
     # the band an error of fn within u_fn makes, read on the record itself (the replicates' 1-DoF slider need
     # not follow fn as the record does)
-    rd = fn_readings(pr, c, fn_used, u_fn, aux["D"], aux.get("ylow"), rec.y_is_force, arcs)
+    rd = fn_readings(pr, c, fn_used, u_fn, aux["D"], aux.get("ylow"), rec.y_is_force, arcs, skip=withheld)
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn, sizes=aux.get("sizes"),
                   fn_readings=rd)
     warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)

@@ -549,17 +549,19 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
 
 
 def fn_readings(pr: Prepared, c: Cycles, fn: float, u: float, D: float, ylow=None, y_is_force=False,
-                arcs: bool = True) -> dict:
+                arcs: bool = True, skip=()) -> dict:
     """The slip-shape statistics (twin branch; a load read from a normal
     reading) read again at fn (1 - u) and fn (1 + u), on the same cycles:
     how far the record's own reading moves over the stated uncertainty of
     fn (:func:`.decide.calibrate`); ``ylow`` the low-passed normal channel
-    the record's own reading used."""
+    the record's own reading used; the candidates in ``skip`` (withheld) are
+    not read."""
     out = {}
     fs = (fn * (1.0 - u), fn * (1.0 + u))
     twin = _twin_arcs if arcs else _twin_rc
-    out["twin_branch"] = tuple(twin(pr, c, f)[0] / D for f in fs)
-    if ylow is not None and not y_is_force:
+    if "twin_branch" not in skip:
+        out["twin_branch"] = tuple(twin(pr, c, f)[0] / D for f in fs)
+    if ylow is not None and not y_is_force and "load_variation" not in skip:
         out["load_variation"] = tuple(_load(pr, c, f, ylow, pr.y, False)[0] / D for f in fs)
     return out
 
@@ -580,7 +582,7 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     for s in pr.strokes:
         if s.n < 20:
             continue
-        P, x0, L = reversal_ramp(pr, s)
+        P, x0, L, _ = reversal_ramp(pr, s)
         t = pr.t[s.j0:s.j0 + s.n]
         lv.append(P)
         trav.append(L)
@@ -611,11 +613,8 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     if pr.pos is not None and lv.size >= 4 and np.any(fw) and np.any(bw):
         ps, vs, gs, ds = [], [], [], []
         for k, s in enumerate(pr.strokes):
-            x = pr.x[s.j0:s.j0 + s.n]
-            P = float(np.median(x[x.size // 2:]))
-            x0 = float(np.median(x[:3]))
-            k90 = np.flatnonzero((x - x0) >= 0.9 * (P - x0)) if P > x0 else np.array([], int)
-            m0 = int(k90[0]) if k90.size else s.n // 2
+            m0 = reversal_ramp(pr, s)[3]
+            m0 = s.n // 2 if m0 is None else m0
             sl = slice(s.j0 + m0, s.j0 + s.n)
             ps.append(pr.pos[sl])
             vs.append(pr.x[sl])

@@ -537,17 +537,18 @@ def travel(vd, dt):
     return np.r_[0.0, np.cumsum(0.5 * (vd[1:] + vd[:-1]) * dt)]
 
 
-def reversal_ramp(p: Prepared, s) -> tuple[float, float, float]:
+def reversal_ramp(p: Prepared, s) -> tuple[float, float, float, int | None]:
     """A stroke's presliding ramp in steady sliding: its sliding level (the
     median x over its second half), x at its start (the median of its first
-    three samples) and the drive's travel (mm) until x has first gone 90 %
-    of the way from the start to the level (nan when it never does)."""
+    three samples), the drive's travel (mm) until x has first gone 90 %
+    of the way from the start to the level (nan when it never does) and
+    that sample within the stroke (None when it never does)."""
     sl = slice(s.j0, s.j0 + s.n)
     x = p.x[sl]
     P, x0 = float(np.median(x[x.size // 2:])), float(np.median(x[:3]))
     tr = travel(p.vd[sl], np.diff(p.t[sl]))
     k90 = np.flatnonzero((x - x0) >= 0.9 * (P - x0)) if P > x0 else np.array([], int)
-    return P, x0, float(tr[k90[0]]) if k90.size else math.nan
+    return (P, x0, float(tr[k90[0]]), int(k90[0])) if k90.size else (P, x0, math.nan, None)
 
 
 #: the part of a stick (trough to next peak) its line is read on: past the
