@@ -1253,3 +1253,54 @@ def test_sticks_rising_faster_than_the_drive_are_questioned():
     said = lambda d: [w for w in d.warnings if "times the drive velocity" in w]
     assert not said(right)
     assert said(wrong) and "4 times" in said(wrong)[0], wrong.warnings
+
+
+def _tilted_track(tilt, n_drift=0.0, f_drift=0.0, fn=12.0, v0=1.5, seconds=14.0, seed=3):
+    """A Coulomb slider (static 1.0, kinetic 0.6, over the stiffness, mm) on a
+    track whose normal load follows the slider's position along it,
+    N = 1 + tilt (u - u_mid) / travel (a tilted track: the static and kinetic
+    friction both follow N), stepped by semi-implicit Euler at 20 kHz (plain
+    NumPy, no lieng code) and sampled at 1 kHz; returns (t, x, N recorded as a
+    force) with a sensor drift of the normal channel ``n_drift`` (relative,
+    linear in time, which the friction does not follow) and of x ``f_drift``
+    (mm)."""
+    g = np.random.default_rng(seed)
+    wn, h = 2 * math.pi * fn, 1.0 / 20000
+    n = int(seconds / h)
+    travel = v0 * seconds
+    x, xd, stick = 0.4, v0, True
+    xs, ns = np.empty(n // 20), np.empty(n // 20)
+    for i in range(n):
+        u = v0 * i * h - x
+        load = 1.0 + tilt * (u / travel - 0.5)
+        if stick:
+            x += v0 * h
+            if x >= 1.0 * load:
+                stick = False
+        else:
+            xd += h * wn * wn * (0.6 * load - x)
+            x += h * xd
+            if xd >= v0:
+                stick, xd = True, v0
+        if i % 20 == 0:
+            xs[i // 20], ns[i // 20] = x, load
+    t = np.arange(xs.size) * 20 * h
+    x_rec = xs + f_drift * t / t[-1] + 0.002 * g.standard_normal(t.size)
+    n_rec = 5.0 * (ns + n_drift * t / t[-1]) + 0.002 * g.standard_normal(t.size)
+    return t, x_rec, n_rec
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("tilt,n_drift,named", [(0.3, 0.0, "load_variation"), (0.0, 0.08, "none")])
+def test_a_load_that_follows_the_track_is_named_and_a_drifting_sensor_is_not(tilt, n_drift, named):
+    """A normal force that changes along the track (a tilted track) carries
+    the friction level with it: the drift of the friction is the load's,
+    named as a load variation (not as a drift of the friction).  A normal
+    channel that drifts by 8 % while the friction does not follow it (a
+    sensor's drift) names nothing."""
+    t, x, N = _tilted_track(tilt, n_drift, f_drift=0.01)
+    d = diagnose(record_from_arrays(t, x, 1.5, N, y_is_force=True), 12.0)
+    assert d.effect == named
+    if named != "none":
+        assert d.gain >= 0.3 and d.evidence["friction_drift"]["named"] is False
+        assert "accounted_for" in d.evidence["friction_drift"]

@@ -421,6 +421,16 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             warnings.append(f"{k} reads {r['effect_size']:+.3g} (over the drop), but an error of fn within the stated "
                             f"+- {100 * u_fn:.3g} % can make up to {r['fn_band']:.3g}: not named; with fn known to "
                             f"+- {100 * un:.2g} % (--fn-uncertainty {un:.2g}) the same reading would be significant")
+    dpl, fd_row = aux.get("drift_per_load"), rows["friction_drift"]
+    if dpl is not None and rows["load_variation"]["named"] and fd_row["named"] and \
+            not (dpl[1] is not None and dpl[1] <= fd_row["holm_level"] and dpl[0] >= MARGIN["friction_drift"]):
+        # the friction level drifts with a recorded load that it follows: the load is the cause
+        fd_row["named"] = False
+        fd_row["accounted_for"] = (f"by the recorded normal channel: the level less its relation with the channel "
+                                   f"changes by {dpl[0]:.3g} of the drop"
+                                   + (f" (p = {dpl[1]:.2g})" if dpl[1] is not None else ""))
+        notes.append("friction_drift is not named: the friction level drifts with the recorded normal channel, "
+                     "which it follows (load_variation); " + fd_row["accounted_for"])
     named = [k for k in CANDIDATES if rows[k]["named"]]
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
 

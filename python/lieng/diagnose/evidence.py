@@ -247,7 +247,57 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
         lock = fit - dmean              # a normal force that differs between the directions is no load locked
         return float((np.percentile(lock, 97.5) - np.percentile(lock, 2.5)) / mean)
 
-    return rel(np.ones(10, bool)), _jackknife(rel, 10), span
+    fast = rel(np.ones(10, bool))
+    slow = _slow_load(pr, c, y, mean)
+    if slow is not None and slow[0] > fast:
+        return slow[0], slow[1], span, slow[2:]
+    return fast, _jackknife(rel, 10), span
+
+
+def cycle_means(y: np.ndarray, c: Cycles) -> np.ndarray:
+    """y's mean over each cycle (a peak to the next, the last to its
+    trough)."""
+    cs = np.r_[0.0, np.cumsum(y)]
+    a = c.peak_i.astype(int)
+    e = np.maximum(np.r_[a[1:], int(c.trough_i[-1]) + 1], a + 1)
+    return (cs[e] - cs[a]) / (e - a)
+
+
+def _slow_load(pr: Prepared, c: Cycles, y, mean: float, D: float | None = None):
+    """A normal force that changes along the record (with the travel, a
+    tilted track or a cam, or in time) rather than with the stick-slip: its
+    slow course, the cycles' mean load as a trend in time plus a sinusoid in
+    travel (:func:`.signals.level_fit`), and whether the friction level
+    follows it.  Read only where that course spans the load margin (5 % of
+    the mean load: a load that varies) and exceeds the part locked to the
+    motion.  Returns (relative range of the course, its jackknife error,
+    the friction change the course explains over D, its error, the one-sided
+    p of the friction level's slope on the course: a load the friction does
+    not follow is a sensor's drift, not an effect) or None."""
+    if c.n < 8:
+        return None
+    Nk = cycle_means(y, c)
+    tt = pr.t[c.peak_i]
+    pos = pr.pos[c.peak_i] if pr.pos is not None else tt
+    rng, co, f = level_fit(tt, pos, Nk)
+    r = rng / mean
+    if not r >= MARGIN["load_variation"]:
+        return None
+    X = np.column_stack([np.ones(tt.size), tt - tt.mean(), np.sin(2 * math.pi * f * pos), np.cos(2 * math.pi * f * pos)])
+    r_se = _jackknife(lambda keep: level_fit(tt[keep], pos[keep], Nk[keep], f=f or None)[0] / mean, c.n)
+    course = X @ co
+    lvl = 0.5 * (pr.x[c.peak_i] + pr.x[c.trough_i])
+    D = D or c.amplitude(pr.x) or 1.0
+    span = float(np.ptp(course))
+
+    def slope(keep):
+        return float(np.polyfit(course[keep], lvl[keep], 1)[0]) if np.ptp(course[keep]) > 0 else np.nan
+
+    b, b_se = slope(np.ones(c.n, bool)), _jackknife(slope, c.n)
+    if not (math.isfinite(b) and math.isfinite(b_se) and b_se > 0):
+        return None
+    p = 0.5 * math.erfc(b / b_se / math.sqrt(2.0))
+    return r, r_se, b * span / D, b_se * span / D, p
 
 
 def stick_times(pr: Prepared, c: Cycles):
@@ -444,10 +494,13 @@ def _creep(pr: Prepared, c: Cycles):
     return est(np.ones(n, bool)), _jackknife(est, n)
 
 
-def _drift(pr: Prepared, c: Cycles, nperm: int = 199):
+def _drift(pr: Prepared, c: Cycles, nperm: int = 199, given=None):
     if c.n < 8:
         return 0.0, math.inf, 0.0, None
     lvl = 0.5 * (pr.x[c.peak_i] + pr.x[c.trough_i])
+    if given is not None and np.ptp(given) > 0:
+        # what remains once the level's linear relation with a recorded channel is taken out
+        lvl = lvl - np.polyval(np.polyfit(given, lvl, 1), given)
     tt = pr.t[c.peak_i]
     pos = pr.pos[c.peak_i] if pr.pos is not None else tt
     if not np.ptp(tt) > 0:
@@ -513,7 +566,7 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     ylow = lowpass(y, pr.dt, 1.5 * fn) if y is not None else None
     v, e = _twin_arcs(pr, c, fn) if arcs else _twin_rc(pr, c, fn)
     st["twin_branch"], se["twin_branch"] = v / D, e / D
-    v, e, yspan = _load(pr, c, fn, ylow, y, y_is_force)
+    v, e, yspan, *slow = _load(pr, c, fn, ylow, y, y_is_force)
     st["load_variation"], se["load_variation"] = (v, e) if y_is_force else (v / D, e / D)
     v, e, lrange = _ageing(pr, c)
     st["static_ageing"], se["static_ageing"] = v / D, e / D
@@ -531,16 +584,26 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
         eps = force_modulation(pr, sig, f_tr, abs(float(np.mean(y)))) if y_is_force else \
             trig_modulation(pr, c, fn, f_tr, D)
         sizes = {"triggering": eps} if math.isfinite(eps[1]) else {}
+    if size and slow and slow[0] is not None:
+        # a normal force that changes along the record: the size is the friction change it explains, and
+        # its own test that the friction follows it
+        sizes["load_variation"] = slow[0]
     v, e, p_drv, f_drv = _drive(pr, c, fn, nperm)
     st["drive_modulation"], se["drive_modulation"] = v, e
     v, e, f_lvl, p_lvl = _drift(pr, c, nperm)
     st["friction_drift"], se["friction_drift"] = v / D, e / D
+    aux_dpl = None
+    if y is not None and size and nperm and c.n >= 8:
+        # the drift that remains once the level's relation with the normal channel (its mean per cycle) is
+        # taken out: a drift a recorded load accounts for is that load's (diagnose)
+        aux_dpl = _drift(pr, c, nperm, given=cycle_means(y, c))
+        aux_dpl = (aux_dpl[0] / D, aux_dpl[3])
     v, e = _asymmetry(pr, c)
     st["direction_asymmetry"], se["direction_asymmetry"] = v / D, e / D
     st["creep"], se["creep"] = _creep(pr, c)
     v, e, p_pos = _position(pr, c)
     st["position_dependence"], se["position_dependence"] = v / D, e
-    aux = {"D": D, "f_tr": f_tr, "ylow": ylow, "y_is_force": y_is_force, "f_level": f_lvl, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
+    aux = {"D": D, "f_tr": f_tr, "drift_per_load": aux_dpl, "ylow": ylow, "y_is_force": y_is_force, "f_level": f_lvl, "log_stick_range": lrange, "y_span": yspan, "f_drive": f_drv,
            # statistics calibrated within the record (a permutation test), not by the baseline's replicates
            "sizes": sizes,
            "p_own": {k: v for k, v in (("drive_modulation", p_drv), ("position_dependence", p_pos),
