@@ -788,7 +788,7 @@ def _core_peaks(vd, dt, fs=1.0, age_r=0.0, age_v=1.0):
     from lieng import _core
     n = vd.size
     x, v, state, status = _core.core_slider(dt, 8, vd, np.ones(n), 2 * math.pi * 5.0, 0.0, fs,
-                                            np.array([0.0, 100.0]), np.array([0.5, 0.5]), 0.0, 0.0, 1.0,
+                                            np.array([0.0, 100.0]), np.array([0.5, 0.5]), 0.0, np.zeros(2), 0.0, 1.0,
                                             age_r, age_v, 0.0, 0.0, 0.0, 0.0, 0.0)
     assert status == 0
     onset = np.flatnonzero((state[:-1] == 1) & (state[1:] == 0))

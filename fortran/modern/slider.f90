@@ -10,10 +10,12 @@
 !> (twin mechanism) and creep growing towards the static limit.
 !>
 !>   slip:  x'' = wn**2 (L(t) F - x) - 2 zeta wn x',
-!>          F = sign(s) phi(|s|) + b delta/2,  s = vd - x'
+!>          F = sign(s) phi(|s|) + b delta/2 + [b > 0] psi(|s|),  s = vd - x'
 !>          phi tabulated at (sg, fg), linear between the points, constant
 !>          beyond the ends (b = -1 while the relative speed grows, +1 after
-!>          it has peaked)
+!>          it has peaked); psi at (sg, dg): the decelerating branch's own
+!>          departure from phi (two branches of general shape; 0 in the
+!>          baseline)
 !>   stick: x' = vd(t) (1 - c0 - c1 r**4), r = x / limit (creep),
 !>          until |x| > L(t) fs (1 + a ln(1 + ts/tau) + r ln(max(vl, vr)/vr)),
 !>          vl the fastest |vd| of the stick so far (its loading velocity)
@@ -51,7 +53,7 @@ contains
       f = fg(ns)
    end function phi
 
-   subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, age_a, age_tau, age_r, age_v, &
+   subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, dg, age_a, age_tau, age_r, age_v, &
                          kx, xref, creep0, creep1, x0, x, v, state, status)
       integer, intent(in) :: n                !< number of output samples (>= 2)
       real(wp), intent(in) :: dt              !< output sample interval (s), > 0
@@ -65,6 +67,7 @@ contains
       real(wp), intent(in) :: sg(ns)          !< sliding velocities of the table, increasing (mm/s)
       real(wp), intent(in) :: fg(ns)          !< the characteristic there: friction over stiffness (mm)
       real(wp), intent(in) :: delta           !< decelerating minus accelerating branch (mm)
+      real(wp), intent(in) :: dg(ns)          !< the decelerating branch less phi at sg (mm; zeros: one branch)
       real(wp), intent(in) :: age_a           !< ageing: relative growth per e-fold of stick time
       real(wp), intent(in) :: age_tau         !< ageing time scale (s), > 0
       real(wp), intent(in) :: age_r           !< static limit's relative growth per e-fold of the loading velocity
@@ -80,7 +83,7 @@ contains
       integer, intent(out) :: status          !< st_ok, st_bad_argument or st_nonfinite_state
       real(wp) :: h, xs, vs_, t_st, s, sprev, f, lfac, vdr, lim, a, w, r, b, vl, grow
       integer :: i, k
-      logical :: stick
+      logical :: stick, twin2
 
       status = st_ok
       x = 0.0_wp; v = 0.0_wp; state = 0
@@ -89,6 +92,7 @@ contains
          status = st_bad_argument
          return
       end if
+      twin2 = any(dg /= 0.0_wp)
       h = dt / nsub
       xs = x0
       vs_ = vd(1)
@@ -130,6 +134,7 @@ contains
                s = vdr - vs_
                if (s > 0.0_wp) then
                   f = phi(s, ns, sg, fg) + 0.5_wp * b * delta
+                  if (twin2 .and. b > 0.0_wp) f = f + phi(s, ns, sg, dg)
                else if (s < 0.0_wp) then
                   f = -phi(-s, ns, sg, fg)
                else

@@ -61,11 +61,13 @@ class Params:
     creep0: float = 0.0
     creep1: float = 0.0            # creep growing towards the static limit
     delta: float = 0.0             # twin: decelerating minus accelerating branch (mm)
+    dg: np.ndarray | None = None   # twin of general shape: the decelerating branch less fg at sg (mm)
     age_a: float = 0.0             # ageing: FS (1 + a ln(1 + ts/tau))
     age_tau: float = 0.01
     age_r: float = 0.0             # rate-dependent static friction: ... + r ln(vl / age_v), vl the loading velocity
     age_v: float = 1.0             # (mm/s)
     load_k: float = 0.0            # exogenous: load = 1 + load_k * (ylow - mean), ylow measured
+    load_tau: float = 0.0          # the friction follows the measured load through a first-order lag (s)
     load_kx: float = 0.0           # coupled: load += load_kx * (x - load_xref)
     load_xref: float = 0.0
     trig_eps: float = 0.0          # load *= 1 + eps sin(2 pi f t + ph)
@@ -95,8 +97,8 @@ class Params:
         d = {}
         for f in fields(self):
             v = getattr(self, f.name)
-            if f.name in ("sg", "fg"):
-                d[f.name] = [float(a) for a in v]
+            if f.name in ("sg", "fg", "dg"):
+                d[f.name] = [float(a) for a in v] if v is not None else None
             elif f.name == "y_c":
                 d.update(y_c0=float(v[0]), y_cx=float(v[1]), y_cv=float(v[2]))
             else:
@@ -148,6 +150,27 @@ def model_drive(pr: Prepared, p: Params, sl: slice):
     return vdd
 
 
+_LAGGED: dict = {}
+
+
+def lagged(y: np.ndarray, tau: float, dt: float) -> np.ndarray:
+    """y through a causal first-order lag of time constant ``tau`` (s),
+    started at y's first value (y itself when tau is 0); the last few
+    results are kept (the same channel is lagged for every cycle a model
+    is judged on)."""
+    if not tau > 0:
+        return y
+    key = (id(y), y.size, float(tau), float(dt))
+    if key not in _LAGGED:
+        from scipy.signal import lfilter
+        a = math.exp(-dt / tau)
+        out = lfilter([1.0 - a], [1.0, -a], y - y[0]) + y[0]
+        if len(_LAGGED) > 8:
+            _LAGGED.clear()
+        _LAGGED[key] = (y, out)        # (y kept alive, so that its id is not reused while cached)
+    return _LAGGED[key][1]
+
+
 def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=None):
     """The slider on the samples ``sl`` of the record's grid (within one
     stroke), started in stick at the displacement ``start``: (x, v, state)."""
@@ -163,7 +186,8 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     vdd = model_drive(pr, p, sl)
     load = np.ones_like(t)
     if p.load_k and ylow is not None:
-        load = load + p.load_k * (ylow[sl] - np.mean(ylow))
+        yl = lagged(ylow, p.load_tau, dt)
+        load = load + p.load_k * (yl[sl] - np.mean(ylow))
     if p.trig_eps:
         load = load * (1.0 + p.trig_eps * _sin(t, p.trig_f, p.trig_ph))
     if p.drift:
@@ -171,7 +195,8 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     if p.level_a and pr.pos is not None:
         load = load * (1.0 + p.level_a * np.sin(2 * math.pi * p.level_f * pr.pos[sl] + p.level_ph))
     load = np.maximum(load, 0.05)
-    x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta,
+    dg = np.zeros_like(sg) if p.dg is None else np.ascontiguousarray(p.dg, float)
+    x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta, dg,
                                             p.age_a, max(p.age_tau, 1e-3 * dt), p.age_r, max(p.age_v, 1e-12),
                                             p.load_kx, p.load_xref, p.creep0, p.creep1,
                                             float(start))

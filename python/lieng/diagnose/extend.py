@@ -45,8 +45,8 @@ import math
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.baseline import (Params, identify, model_drive, model_y, pr_like, run_slice, simulate,
-                                     slip_friction)
+from lieng.diagnose.baseline import (Params, characteristic, identify, lagged, model_drive, model_y, pr_like,
+                                     run_slice, simulate, slip_friction)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
@@ -339,6 +339,24 @@ def _per_load(base: Params, pr: Prepared, c: Cycles, fn: float, load, sel, **kw)
     return [base.copy(fs=fs, **kw), base.copy(sg=sg, fg=np.minimum(fg, fs), fs=fs, **kw)]
 
 
+def _branches(base: Params, pr: Prepared, c: Cycles, fn: float, sel) -> Params | None:
+    """The baseline with its characteristic read on each branch apart (the
+    accelerating half of the slips as ``fg``, the decelerating one less it as
+    ``dg``, on the baseline's grid), from the slips of the cycles ``sel``;
+    None when a branch has too few samples."""
+    idx, s, F, br, sid = slip_friction(pr, c, fn)
+    keep = np.isin(sid, np.flatnonzero(sel))
+    acc, dec = keep & (br < 0), keep & (br > 0)
+    if np.count_nonzero(acc) < 8 or np.count_nonzero(dec) < 8 or base.sg.size < 2:
+        return None
+    sa, fa = characteristic(s[acc], F[acc])
+    sd, fd = characteristic(s[dec], F[dec])
+    if sa.size < 2 or sd.size < 2:
+        return None
+    fa_g, fd_g = np.interp(base.sg, sa, fa), np.interp(base.sg, sd, fd)
+    return base.copy(fg=np.minimum(fa_g, base.fs), dg=fd_g - fa_g, delta=0.0)
+
+
 def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st: dict, aux: dict,
                train: tuple) -> list:
     """Extended models for ``effect`` (the baseline plus one term), from the
@@ -358,6 +376,17 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
     if effect == "twin_branch":
         for s in (0.6, 1.0, 1.5):
             out.append(lvl(base.copy(delta=s * st["twin_branch"] * D)))
+            # the step all on the decelerating branch: the slip starts on the baseline's characteristic
+            out.append(lvl(base.copy(dg=np.full(base.sg.size, s * st["twin_branch"] * D))))
+        # two branches of general shape (ch. 4.1's loops), each read by the reverse construction on the
+        # training slips; their difference also scaled to the effect size (the reading less the baseline's
+        # own)
+        tw = _branches(base, pr, c, fn, ctr_sel)
+        if tw is not None:
+            out.append(lvl(tw))
+            m = float(np.mean(tw.dg))
+            if m > 0 and st["twin_branch"] > 0:
+                out.append(lvl(tw.copy(dg=tw.dg * (st["twin_branch"] * D / m))))
     elif effect == "load_variation" and ylow is not None:
         idx, s, F, br, sid = slip_friction(pr, c, fn)
         m = tr_mask[idx]
@@ -372,16 +401,21 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 kf *= float(np.clip(size / raw, 0.2, 5.0))
             elif raw and size:
                 kf = math.copysign(abs(kf), kf * size / raw)
+            taus = (0.0,)
             if aux.get("y_is_force"):
                 kf = 1.0 / abs(float(np.mean(ylow)))      # Amontons: the load factor is N / mean N
+                # the friction may follow a measured load through a lag (a junction that takes time to
+                # grow or shrink): a tenth and a half of a natural period
+                taus = (0.0, 0.1 / fn, 0.5 / fn)
             for sc in (0.7, 1.0, 1.4):
                 k = sc * kf
-                # the characteristic and the static limit read again per unit load (F / load): the
-                # baseline's carry the load's mean course along the slips
-                ld = 1.0 + k * (ylow - np.mean(ylow))
-                if np.all(ld[c.peak_i[ctr_sel]] > 0.05):
-                    out += [lvl(q, ylow=ylow) for q in _per_load(base, pr, c, fn, np.maximum(ld, 0.05), ctr_sel,
-                                                                 load_k=k)]
+                for tau in taus:
+                    # the characteristic and the static limit read again per unit load (F / load): the
+                    # baseline's carry the load's mean course along the slips
+                    ld = 1.0 + k * (lagged(ylow, tau, pr.dt) - np.mean(ylow))
+                    if np.all(ld[c.peak_i[ctr_sel]] > 0.05):
+                        out += [lvl(q, ylow=ylow) for q in _per_load(base, pr, c, fn, np.maximum(ld, 0.05),
+                                                                     ctr_sel, load_k=k, load_tau=tau)]
                 if base.y_c[1]:
                     kx, xref = k * base.y_c[1], float(np.mean(pr.x))
                     ld = 1.0 + kx * (pr.x - xref)
@@ -563,7 +597,7 @@ def unconfirmed(g: dict, has_candidates: bool, direct: bool = False) -> str | No
 
 
 #: the parameter each extension scales (refined on the training error)
-SCALED = {"twin_branch": ("delta",), "load_variation": ("load_k", "load_kx"), "static_ageing": ("age_a", "age_r"),
+SCALED = {"twin_branch": ("delta", "dg"), "load_variation": ("load_k", "load_kx"), "static_ageing": ("age_a", "age_r"),
           "triggering": ("trig_eps",), "drive_modulation": ("drv_a",), "friction_drift": ("drift", "level_a"),
           "creep": ("creep1",)}
 
@@ -573,13 +607,13 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
     """Scale the extension's own parameter(s) of ``best`` by a factor in
     [0, 2] chosen by golden-section search on the training error (the level
     refitted each time).  Returns (params, training error)."""
-    names = [n for n in SCALED.get(effect, ()) if getattr(best, n)]
+    names = [n for n in SCALED.get(effect, ()) if np.any(getattr(best, n) if getattr(best, n) is not None else 0)]
     if not names:
         return best, judge.error(best, bool(best.trig_ay))
     with_y = bool(best.trig_ay)
 
     def make(f):
-        q = best.copy(**{n: f * getattr(best, n) for n in names})
+        q = best.copy(**{n: f * getattr(best, n) for n in names if getattr(best, n) is not None})
         return _fit_level(pr, q, fn, target, target_mask, ylow=ylow if q.load_k else None)
 
     def cost(f):
