@@ -270,6 +270,14 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
     warnings = []
+    if not rec.drive_recorded and len(pr.strokes) == 1:
+        big = float(np.max(np.abs(rec.x))) if rec.x.size else 0.0
+        neg, pos = (float(np.mean(rec.x < -0.2 * big)), float(np.mean(rec.x > 0.2 * big))) if big > 0 else (0.0, 0.0)
+        if min(neg, pos) > 0.2:
+            warnings.append(f"the force changes sign over long stretches ({100 * neg:.0f} % of the record below zero, "
+                            f"{100 * pos:.0f} % above): a drive that reverses? With a constant drive (--v0) only the "
+                            f"strokes in its direction are read as stick-slip: give the drive's position, or a signed "
+                            f"v0 column")
     if rec.stiffness_unknown:
         k = _stiffness_from_sticks(pr)
         if k is None:

@@ -27,7 +27,17 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     (its coefficient times the channel's peak-to-peak) over D.  With a
     normal *force* channel the load variation is measured directly: the
     relative peak-to-peak of the part of N locked to the motion (fitted in
-    each drive direction apart).  Needs a normal channel that varies.
+    each drive direction apart); or, where N changes more along the record
+    than with the stick-slip (a tilted track, a cam: N following the
+    slider's position along the track) by the margin or more, the relative
+    range of its slow course (the cycles' mean load as a trend in time plus
+    a sinusoid in travel), with the friction change that course explains as
+    the effect size and its own test that the friction level follows it
+    (:func:`_slow_load`; a load the friction does not follow is a sensor's
+    drift).  A friction drift that the recorded normal channel accounts for
+    is then not named apart (``drift_per_load``: the drift of the level
+    less its relation with the channel).  Needs a normal channel that
+    varies.
 ``static_ageing``
     The peak against the log of the stick time (trough to next peak, also
     across a hold): the change over the record's whole range of stick times,
@@ -248,50 +258,41 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
         return float((np.percentile(lock, 97.5) - np.percentile(lock, 2.5)) / mean)
 
     fast = rel(np.ones(10, bool))
-    slow = _slow_load(pr, c, y, mean)
+    slow = _slow_load(pr, c, y, mean, ylow)
     if slow is not None and slow[0] > fast:
         return slow[0], slow[1], span, slow[2:]
     return fast, _jackknife(rel, 10), span
 
 
-def cycle_means(y: np.ndarray, c: Cycles) -> np.ndarray:
-    """y's mean over each cycle (a peak to the next, the last to its
-    trough)."""
-    cs = np.r_[0.0, np.cumsum(y)]
-    a = c.peak_i.astype(int)
-    e = np.maximum(np.r_[a[1:], int(c.trough_i[-1]) + 1], a + 1)
-    return (cs[e] - cs[a]) / (e - a)
-
-
-def _slow_load(pr: Prepared, c: Cycles, y, mean: float, D: float | None = None):
-    """A normal force that changes along the record (with the travel, a
-    tilted track or a cam, or in time) rather than with the stick-slip: its
-    slow course, the cycles' mean load as a trend in time plus a sinusoid in
-    travel (:func:`.signals.level_fit`), and whether the friction level
-    follows it.  Read only where that course spans the load margin (5 % of
-    the mean load: a load that varies) and exceeds the part locked to the
-    motion.  Returns (relative range of the course, its jackknife error,
-    the friction change the course explains over D, its error, the one-sided
-    p of the friction level's slope on the course: a load the friction does
-    not follow is a sensor's drift, not an effect) or None."""
-    if c.n < 8:
+def _slow_load(pr: Prepared, c: Cycles, y, mean: float, ylow, D: float | None = None):
+    """A normal force that changes apart from the stick-slip (with the
+    travel, a tilted track or a cam, or in time, a servo's own course): its
+    part not locked to the motion (:func:`.signals.y_locked`), low-passed, at
+    each slip's onset, and whether the static limit (the peak) follows it.
+    Read only where that part spans the load margin (5 % of the mean load:
+    a load that varies) and exceeds the part locked to the motion.  Returns
+    (its relative range at the onsets, a jackknife error, the friction
+    change it explains over D, its error, the one-sided p of the peaks'
+    slope on it: a load the friction does not follow is a sensor's drift,
+    not an effect) or None."""
+    if c.n < 8 or ylow is None:
         return None
-    Nk = cycle_means(y, c)
-    tt = pr.t[c.peak_i]
-    pos = pr.pos[c.peak_i] if pr.pos is not None else tt
-    rng, co, f = level_fit(tt, pos, Nk)
-    r = rng / mean
+    fit, dmean = y_locked(pr.x, c.v, y, directions(pr))
+    free = (ylow - (fit - dmean))[c.peak_i]
+    pk = pr.x[c.peak_i]
+
+    def rng(v):
+        return float(np.percentile(v, 97.5) - np.percentile(v, 2.5))
+
+    r = rng(free) / mean
     if not r >= MARGIN["load_variation"]:
         return None
-    X = np.column_stack([np.ones(tt.size), tt - tt.mean(), np.sin(2 * math.pi * f * pos), np.cos(2 * math.pi * f * pos)])
-    r_se = _jackknife(lambda keep: level_fit(tt[keep], pos[keep], Nk[keep], f=f or None)[0] / mean, c.n)
-    course = X @ co
-    lvl = 0.5 * (pr.x[c.peak_i] + pr.x[c.trough_i])
+    r_se = _jackknife(lambda keep: rng(free[keep]) / mean, c.n)
     D = D or c.amplitude(pr.x) or 1.0
-    span = float(np.ptp(course))
+    span = rng(free)
 
     def slope(keep):
-        return float(np.polyfit(course[keep], lvl[keep], 1)[0]) if np.ptp(course[keep]) > 0 else np.nan
+        return float(np.polyfit(free[keep], pk[keep], 1)[0]) if np.ptp(free[keep]) > 0 else np.nan
 
     b, b_se = slope(np.ones(c.n, bool)), _jackknife(slope, c.n)
     if not (math.isfinite(b) and math.isfinite(b_se) and b_se > 0):
@@ -593,10 +594,10 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     v, e, f_lvl, p_lvl = _drift(pr, c, nperm)
     st["friction_drift"], se["friction_drift"] = v / D, e / D
     aux_dpl = None
-    if y is not None and size and nperm and c.n >= 8:
-        # the drift that remains once the level's relation with the normal channel (its mean per cycle) is
-        # taken out: a drift a recorded load accounts for is that load's (diagnose)
-        aux_dpl = _drift(pr, c, nperm, given=cycle_means(y, c))
+    if ylow is not None and size and nperm and c.n >= 8:
+        # the drift that remains once the level's relation with the normal channel (low-passed, at each
+        # slip's onset) is taken out: a drift a recorded load accounts for is that load's (diagnose)
+        aux_dpl = _drift(pr, c, nperm, given=ylow[c.peak_i])
         aux_dpl = (aux_dpl[0] / D, aux_dpl[3])
     v, e = _asymmetry(pr, c)
     st["direction_asymmetry"], se["direction_asymmetry"] = v / D, e / D

@@ -44,20 +44,22 @@ MAX_SAMPLES = 5_000_000
 MIN_SAMPLES = 50
 
 _NAMES = {
-    "t": ("t", "time", "timestamp", "datetime", "date_time"),
+    "t": ("t", "time", "timestamp", "datetime", "date_time", "zeit", "temps"),
     "x": ("x", "disp", "displacement", "extension", "spring"),
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
-    "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity"),
+    "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity", "geschwindigkeit"),
     "F": ("f", "friction", "force", "friction_force", "ft", "ff", "f_f", "fr", "fx", "tangential", "tangential_force",
-          "lateral_force"),
+          "lateral_force", "kraft", "reibkraft", "reibungskraft", "tangentialkraft"),
     "mu": ("mu", "µ", "μ", "cof", "coefficient_of_friction", "friction_coefficient", "fnorm", "mu_k"),
-    "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load"),
-    "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive"),
+    "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load", "normalkraft"),
+    "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg"),
 }
 _LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6}
 _VELOCITY = {"": 1.0, "mm/s": 1.0, "um/s": 1e-3, "µm/s": 1e-3, "m/s": 1e3, "cm/s": 10.0, "mm/min": 1 / 60}
-_TIME = {"": 1.0, "s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0}
-_FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "kn": 1e3}
+_TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0, "h": 3600.0, "hr": 3600.0}
+#: forces (N), also the gravitational units a balance or an old rig writes (gram-, kilogram-, pound-force)
+_FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "kn": 1e3, "dan": 10.0, "gf": 9.80665e-3,
+          "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605}
 #: stresses (Pa): a shear and a normal stress stand for the forces (a rock-mechanics biaxial rig)
 _STRESS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "bar": 1e5, "psi": 6894.757}
 
@@ -114,7 +116,7 @@ def _unit_key(unit: str) -> str:
 
 
 #: units as they are written, for the messages
-_SHOWN = {"n": "N", "mn": "mN", "un": "uN", "µn": "µN", "kn": "kN", "pa": "Pa", "kpa": "kPa", "mpa": "MPa",
+_SHOWN = {"n": "N", "mn": "mN", "un": "uN", "µn": "µN", "kn": "kN", "dan": "daN", "kgf": "kgf", "kp": "kp", "lbf": "lbf", "gf": "gf", "pa": "Pa", "kpa": "kPa", "mpa": "MPa",
           "gpa": "GPa"}
 
 
@@ -316,11 +318,31 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         t = np.arange(n) / float(rate)
     d = np.diff(t)
     bad = np.flatnonzero(d <= 0)
+    restart = bad[t[bad + 1] <= t[0]] if bad.size else bad
+    runs_note = None
+    if restart.size and restart.size == bad.size:
+        # the clock starts again: runs appended to one file; the longest is analysed
+        edges = np.r_[0, restart + 1, n]
+        j = int(np.argmax(np.diff(edges)))
+        keep = slice(int(edges[j]), int(edges[j + 1]))
+        runs_note = (f"the time starts again {restart.size} time{'s' if restart.size > 1 else ''} (runs appended to "
+                     f"one file): the longest run, lines {tab.lines[keep.start]} to {tab.lines[keep.stop - 1]}, is "
+                     f"analysed")
+        t = t[keep]
+        cols = {k: (nm, col[keep]) for k, (nm, col) in cols.items()}
+        tab.lines = tab.lines[keep]
+        n = t.size
+        if n < MIN_SAMPLES:
+            _fail(f"{path}: {n} samples in the longest run: too short for stick-slip analysis (at least {MIN_SAMPLES})")
+        d = np.diff(t)
+        bad = np.flatnonzero(d <= 0)
     if bad.size:
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
     notes = [mu_note] if mu_note else []
+    if runs_note:
+        notes.append(runs_note)
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
@@ -332,6 +354,16 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if tab.dropped:
         notes.append(f"{tab.dropped} rows with a missing value (empty, NaN) left out: the record is resampled "
                      f"across them")
+    if tab.encoding != "utf-8":
+        notes.append(f"the file is not UTF-8: read as {tab.encoding} text")
+    if tab.comment_header:
+        notes.append("the header is the comment line above the numbers (as numpy.savetxt writes it)")
+    if tab.repeated:
+        notes.append(f"the header row repeats {tab.repeated} time{'s' if tab.repeated > 1 else ''} between the rows "
+                     f"(runs appended to one file, or a header per page): passed over")
+    if tab.footer:
+        notes.append(f"{tab.footer} line{'s' if tab.footer > 1 else ''} of text after the last row passed over (a "
+                     f"summary, not part of the table)")
     if "x" in cols:
         x = cols["x"][1] * _scale(path, cols["x"][0], units["x"], _LENGTH, "displacement")
         if stiffness is not None:

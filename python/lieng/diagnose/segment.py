@@ -375,6 +375,8 @@ def find_cycles(p: Prepared, fn: float | None) -> Cycles:
             vs.append(smooth(xr, dt, 1.0, 1, win=7))
             acc.append(smooth(xr, dt, 1.0, 2, win=7))
         span = float(np.percentile(xl, 98) - np.percentile(xl, 2))
+        if not span > 1e-9 * float(np.max(np.abs(xl))):
+            continue                      # a flat stroke (within rounding): no cycle in it
         h0 = max(0.25 * span, 8 * noise)
         ix, kd = _zigzag_fast(xl, h0)
         if ix.size >= 4:

@@ -47,6 +47,14 @@ class Table:
         #: columns of date-times (``2024-03-01 10:22:01.250``), read as
         #: seconds from the first row's: name -> that first date-time
         self.dates = {}
+        #: what was read beyond a plain table, for the caller's notes: the
+        #: text encoding when not UTF-8, the header taken from a comment line,
+        #: header rows repeated between the rows (a second run appended), and
+        #: lines of text after the last row (a summary)
+        self.encoding = "utf-8"
+        self.comment_header = False
+        self.repeated = 0
+        self.footer = 0
 
     def __len__(self):
         return len(self.lines)
@@ -93,7 +101,7 @@ def _datetime_ns(cell: str):
 
 
 def _number(cell: str, decimal_comma: bool) -> float:
-    c = cell.strip()
+    c = cell.strip().replace("\u2212", "-")     # a typeset minus sign (U+2212)
     if "_" in c:                          # Python reads "0_2" as 2.0: no instrument writes it
         raise ValueError(cell)
     if decimal_comma:
@@ -233,7 +241,7 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
         An unreadable file, a row with too few cells, a non-numeric or
         non-finite cell (naming its line and column).
     """
-    text = read_text(path, what="table")
+    text, encoding = _decode(path)
     if text.startswith("\ufeff"):
         text = text[1:]
     rows = split_lines(text)
@@ -252,7 +260,19 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
     k0 = content[skipped]
     k1 = next((k for k in range(k0 + 1, len(rows)) if rows[k].strip() and not _is_comment(rows[k])), None)
     first = None if k1 is None else rows[k1]
-    sep, head = _split_header(rows[k0], first)
+    header_row = rows[k0]
+    from_comment = False
+    if skipped == 0 and _numeric_cells(rows[k0]):
+        # no header above the numbers: the comment line just above them, when it names as many columns
+        # (numpy.savetxt writes its header as "# t [s],F [N]")
+        above = next((rows[k] for k in range(k0 - 1, -1, -1) if rows[k].strip()), None)
+        if above is not None and _is_comment(above):
+            cand = above.lstrip().lstrip("#%/").strip()
+            sep_c, cells_c = _split_header(cand, rows[k0])
+            if len([c for c in cells_c if c]) == _numeric_cells(rows[k0]) and not _numeric_cells(cand):
+                header_row, from_comment = cand, True
+                first, k1, k0 = rows[k0], k0, k0 - 1
+    sep, head = _split_header(header_row, first)
     head = [_unquote(h) for h in head]
     while len(head) > 1 and not head[-1]:
         head.pop()                        # a separator at the end of every line
@@ -277,7 +297,8 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
                     start = k1 + 1
     skip = [bool(unused and unused(n, u)) for n, u in zip(names, units)]
     data, lines = [], []
-    dropped = 0
+    dropped = repeated = footer = 0
+    head_key = header_row.strip()
     dates = {}                            # column -> its first date-time (ns): the others are seconds from it
     for r in range(start, len(rows)):
         row = rows[r]
@@ -285,7 +306,10 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
             continue
         if len(row) > MAX_LINE:
             raise LiengInputError(f"{path}: line {r + 1}: longer than {MAX_LINE} characters: not a table row")
-        cells = row.split(sep) if sep else row.split()
+        if data and row.strip() == head_key:
+            repeated += 1                 # the header again: a second run appended to the file
+            continue
+        cells = _cells(row, sep)
         if len(cells) < ncol and not (missing == "drop" and sep):
             raise LiengInputError(f"{path}: line {r + 1}: {len(cells)} cells where the header has {ncol}")
         vals = []
@@ -300,9 +324,13 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
             try:
                 if c in dates:
                     raise ValueError(cell)
-                val = _number(cell, comma)
+                # (a quoted cell of a comma-separated row may hold a decimal comma: "0,5")
+                val = _number(cell, comma or (sep == "," and "," in cell))
             except ValueError:
                 ns = _datetime_ns(cell) if c in dates or not data else None
+                if ns is None and len(data) >= MIN_FOOTER_ROWS and _footer_from(rows, r):
+                    vals = "footer"
+                    break
                 if ns is None:
                     raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell[:40]!r} is not a "
                                           f"number" + (" (nor a date-time like its first row's)" if c in dates
@@ -317,6 +345,9 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
                 raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is out of range for a "
                                       f"measurement (|value| > {MAX_ABS:g})")
             vals.append(val)
+        if vals == "footer":
+            footer = sum(1 for q in rows[r:] if q.strip() and not _is_comment(q))
+            break
         if vals is None:
             dropped += 1
             continue
@@ -330,7 +361,46 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
     tab.dropped = dropped
     tab.preamble = skipped
     tab.dates = {names[c]: str(np.datetime64(ns, "ns")) for c, ns in dates.items()}
+    tab.encoding, tab.comment_header, tab.repeated, tab.footer = encoding, from_comment, repeated, footer
     return tab
+
+
+#: a summary after the last row is passed over only below this many rows of data
+MIN_FOOTER_ROWS = 50
+
+
+def _footer_from(rows, r: int) -> bool:
+    """Whether the rows from ``r`` on hold no row of numbers (a summary
+    written after the data: "Mean force: 2.1 N", "End of test")."""
+    return not any(_numeric_cells(q) for q in rows[r:] if q.strip() and not _is_comment(q))
+
+
+def _cells(row: str, sep):
+    """A data row's cells: split at the separator, outside double quotes."""
+    if sep and '"' in row:
+        import csv
+        return next(csv.reader([row], delimiter=sep))
+    return row.split(sep) if sep else row.split()
+
+
+def _decode(path):
+    """The table's text and its encoding: UTF-8; else UTF-16 with its
+    byte-order mark; else Windows-1252 (a Latin-1 export: "Kraft [N]", "µm")."""
+    try:
+        return read_text(path, what="table"), "utf-8"
+    except LiengInputError as exc:
+        if "not valid UTF-8" not in str(exc):
+            raise
+    with open(path, "rb") as fh:
+        raw = fh.read()
+    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        try:
+            return raw.decode("utf-16"), "utf-16"
+        except UnicodeDecodeError:
+            pass
+    if b"\x00" in raw:
+        raise LiengInputError(f"{path}: not valid UTF-8 text (a binary file?)")
+    return raw.decode("cp1252", errors="replace"), "windows-1252"
 
 
 def read_columns(path, required: Sequence[str], optional: Sequence[str], expect: str) -> dict:
