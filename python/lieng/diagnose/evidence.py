@@ -264,21 +264,33 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
     return fast, _jackknife(rel, 10), span
 
 
+def cycle_means(y: np.ndarray, c: Cycles) -> np.ndarray:
+    """y's mean over each cycle: from the trough before its peak (the stick
+    that loads it; the record's start for the first) to its own trough
+    (what changes within a cycle, a line at several fn, averages out)."""
+    cs = np.r_[0.0, np.cumsum(y)]
+    e = c.trough_i.astype(int) + 1
+    a = np.r_[max(int(c.peak_i[0]) - (e[0] - int(c.peak_i[0])), 0), e[:-1]]
+    a = np.minimum(a, e - 1)
+    return (cs[e] - cs[a]) / (e - a)
+
+
 def _slow_load(pr: Prepared, c: Cycles, y, mean: float, ylow, D: float | None = None):
     """A normal force that changes apart from the stick-slip (with the
     travel, a tilted track or a cam, or in time, a servo's own course): its
-    part not locked to the motion (:func:`.signals.y_locked`), low-passed, at
-    each slip's onset, and whether the static limit (the peak) follows it.
+    part not locked to the motion (:func:`.signals.y_locked`), its mean over
+    each cycle (:func:`cycle_means`), and whether the static limit (the
+    peak) follows it.
     Read only where that part spans the load margin (5 % of the mean load:
     a load that varies) and exceeds the part locked to the motion.  Returns
-    (its relative range at the onsets, a jackknife error, the friction
+    (its relative range over the cycles, a jackknife error, the friction
     change it explains over D, its error, the one-sided p of the peaks'
     slope on it: a load the friction does not follow is a sensor's drift,
     not an effect) or None."""
     if c.n < 8 or ylow is None:
         return None
     fit, dmean = y_locked(pr.x, c.v, y, directions(pr))
-    free = (ylow - (fit - dmean))[c.peak_i]
+    free = cycle_means(y - (fit - dmean), c)
     pk = pr.x[c.peak_i]
 
     def rng(v):
