@@ -25,7 +25,7 @@ from lieng.diagnose.decide import ALPHA, RIVALS, decide, fn_needed, misfit, null
 from lieng.diagnose.evidence import (CANDIDATES, MARGIN, ONE_SIDED, SLIDING, fn_readings, sliding_statistics,
                                      statistics)
 from lieng.diagnose.goodness import RIG
-from lieng.diagnose.signals import y_on_motion
+from lieng.diagnose.signals import lowpass, y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
 from lieng.diagnose.segment import (estimate_fn, find_cycles, head, prepare, reversal_ramp, slip_seconds,
@@ -59,6 +59,8 @@ SLIP_SHORTEST = 0.2
 #: are what a decelerating branch above the accelerating one makes: the
 #: effect itself)
 SLIP_MATCH = 0.10
+#: a normal force drives the extensions' load low-passed at this many fn (the evidence reads it at 1.5 fn)
+EXT_LOWPASS = 4.0
 
 
 @dataclass
@@ -412,6 +414,10 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     rd = fn_readings(pr, c, fn_used, u_fn, aux["D"], aux.get("ylow"), rec.y_is_force, arcs, skip=withheld)
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn, sizes=aux.get("sizes"),
                   fn_readings=rd)
+    # the extensions' load: a normal *force* drives the friction at every frequency the slider follows, so
+    # it is low-passed at 4 fn there (the evidence's 1.5 fn keeps a triggering line out of the load's
+    # reading, which the extension need not); a normal reading keeps the evidence's channel
+    aux_ext = {**aux, "ylow": lowpass(pr.y, pr.dt, EXT_LOWPASS * fn_used) if rec.y_is_force else aux.get("ylow")}
     warnings.extend(r["beyond_model"] for r in rows.values() if "beyond_model" in r)
     tr = rows["triggering"]
     if tr.get("line_significant") and tr.get("size_shown") is False:
@@ -452,7 +458,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         cf = subset(c, sel)
         b = fit_baseline(pr, cf, fn_used) if cf.n >= 3 else base_all
         b.y_c = base_all.y_c
-        fold_models.append((b, Judge(pr, c, fn_used, lo, hi, aux.get("ylow")), (lo, hi),
+        fold_models.append((b, Judge(pr, c, fn_used, lo, hi, aux_ext["ylow"]), (lo, hi),
                             _train_trough(pr, c, sel)))
     base = fold_models[0][0]
     effects = []
@@ -463,12 +469,12 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         stk = {**st, k: rows[k]["effect_size"], k + "_raw": st[k]}
         fits, first = [], None
         for (b, train, win, trough), part in zip(fold_models, parts):
-            res = _extend(k, b, train, pr, c, fn_used, stk, aux, win, trough)
+            res = _extend(k, b, train, pr, c, fn_used, stk, aux_ext, win, trough)
             fits.append((part[2], part[3], b, res[0]))
             first = first or res
         # the first fold's extension is the one reported (fitted on the record's first 70 %)
         ext, e_tr, e_train0, cands = first
-        g = gain_folds(pr, c, fn_used, fits, aux.get("ylow"))
+        g = gain_folds(pr, c, fn_used, fits, aux_ext["ylow"])
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0
         r = rows[k]
@@ -481,7 +487,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                                 ("none better than the baseline on the training part" if cands else
                                  "none available")}))
     first = rivals(pr, base, fitted, fn_used, u_fn, st, rows, named, effects, notes, rec.y_is_force, arcs,
-                   aux.get("ylow"), replicates, budget)
+                   aux_ext["ylow"], replicates, budget)
     # named = detected and confirmed by prediction: an extension that does not predict the held-out cycles
     # better than the baseline leaves the effect detected, not named (a load read from a normal force is
     # its own evidence)
@@ -511,7 +517,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     effects.sort(key=lambda e: named.index(e["effect"]))
     primary_ext, primary_gain = (fitted[named[0]][0], fitted[named[0]][1]) if named else (base, None)
     g0 = primary_gain or gain_folds(pr, c, fn_used, [(p[2], p[3], m[0], m[0]) for p, m in zip(parts, fold_models)],
-                                    aux.get("ylow"))
+                                    aux_ext["ylow"])
     det = "; ".join(f"{e['effect']} is significant (size {e['effect_size']:+.3g}, margin {MARGIN[e['effect']]}, "
                     f"p = {e['p']:.2g}) but {e['why_not_named']}" for e in detected)
     if named:
