@@ -67,7 +67,6 @@ class Params:
     age_r: float = 0.0             # rate-dependent static friction: ... + r ln(vl / age_v), vl the loading velocity
     age_v: float = 1.0             # (mm/s)
     load_k: float = 0.0            # exogenous: load = 1 + load_k * (ylow - mean), ylow measured
-    load_tau: float = 0.0          # the friction follows the measured load through a first-order lag (s)
     load_kx: float = 0.0           # coupled: load += load_kx * (x - load_xref)
     load_xref: float = 0.0
     trig_eps: float = 0.0          # load *= 1 + eps sin(2 pi f t + ph)
@@ -150,27 +149,6 @@ def model_drive(pr: Prepared, p: Params, sl: slice):
     return vdd
 
 
-_LAGGED: dict = {}
-
-
-def lagged(y: np.ndarray, tau: float, dt: float) -> np.ndarray:
-    """y through a causal first-order lag of time constant ``tau`` (s),
-    started at y's first value (y itself when tau is 0); the last few
-    results are kept (the same channel is lagged for every cycle a model
-    is judged on)."""
-    if not tau > 0:
-        return y
-    key = (id(y), y.size, float(tau), float(dt))
-    if key not in _LAGGED:
-        from scipy.signal import lfilter
-        a = math.exp(-dt / tau)
-        out = lfilter([1.0 - a], [1.0, -a], y - y[0]) + y[0]
-        if len(_LAGGED) > 8:
-            _LAGGED.clear()
-        _LAGGED[key] = (y, out)        # (y kept alive, so that its id is not reused while cached)
-    return _LAGGED[key][1]
-
-
 def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=None):
     """The slider on the samples ``sl`` of the record's grid (within one
     stroke), started in stick at the displacement ``start``: (x, v, state)."""
@@ -186,8 +164,7 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     vdd = model_drive(pr, p, sl)
     load = np.ones_like(t)
     if p.load_k and ylow is not None:
-        yl = lagged(ylow, p.load_tau, dt)
-        load = load + p.load_k * (yl[sl] - np.mean(ylow))
+        load = load + p.load_k * (ylow[sl] - np.mean(ylow))
     if p.trig_eps:
         load = load * (1.0 + p.trig_eps * _sin(t, p.trig_f, p.trig_ph))
     if p.drift:

@@ -45,8 +45,8 @@ import math
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.baseline import (Params, characteristic, identify, lagged, model_drive, model_y, pr_like,
-                                     run_slice, simulate, slip_friction)
+from lieng.diagnose.baseline import (Params, characteristic, identify, model_drive, model_y, pr_like, run_slice,
+                                     simulate, slip_friction)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
@@ -401,21 +401,16 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 kf *= float(np.clip(size / raw, 0.2, 5.0))
             elif raw and size:
                 kf = math.copysign(abs(kf), kf * size / raw)
-            taus = (0.0,)
             if aux.get("y_is_force"):
                 kf = 1.0 / abs(float(np.mean(ylow)))      # Amontons: the load factor is N / mean N
-                # the friction may follow a measured load through a lag (a junction that takes time to
-                # grow or shrink): a tenth and a half of a natural period
-                taus = (0.0, 0.1 / fn, 0.5 / fn)
             for sc in (0.7, 1.0, 1.4):
                 k = sc * kf
-                for tau in taus:
-                    # the characteristic and the static limit read again per unit load (F / load): the
-                    # baseline's carry the load's mean course along the slips
-                    ld = 1.0 + k * (lagged(ylow, tau, pr.dt) - np.mean(ylow))
-                    if np.all(ld[c.peak_i[ctr_sel]] > 0.05):
-                        out += [lvl(q, ylow=ylow) for q in _per_load(base, pr, c, fn, np.maximum(ld, 0.05),
-                                                                     ctr_sel, load_k=k, load_tau=tau)]
+                # the characteristic and the static limit read again per unit load (F / load): the
+                # baseline's carry the load's mean course along the slips
+                ld = 1.0 + k * (ylow - np.mean(ylow))
+                if np.all(ld[c.peak_i[ctr_sel]] > 0.05):
+                    out += [lvl(q, ylow=ylow) for q in _per_load(base, pr, c, fn, np.maximum(ld, 0.05), ctr_sel,
+                                                                 load_k=k)]
                 if base.y_c[1]:
                     kx, xref = k * base.y_c[1], float(np.mean(pr.x))
                     ld = 1.0 + kx * (pr.x - xref)
