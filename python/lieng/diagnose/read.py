@@ -348,22 +348,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if rate is not None:
         notes.append(f"--rate ignored: the record gives the time (column {cols['t'][0]})" if "t" in cols else
                      f"no time column: the rows are samples {1.0 / rate:.4g} s apart (--rate {rate:g} Hz)")
-    if tab.preamble:
-        notes.append(f"{tab.preamble} lines of text above the header passed over (not part of the table: the "
-                     f"instrument's metadata)")
-    if tab.dropped:
-        notes.append(f"{tab.dropped} rows with a missing value (empty, NaN) left out: the record is resampled "
-                     f"across them")
-    if tab.encoding != "utf-8":
-        notes.append(f"the file is not UTF-8: read as {tab.encoding} text")
-    if tab.comment_header:
-        notes.append("the header is the comment line above the numbers (as numpy.savetxt writes it)")
-    if tab.repeated:
-        notes.append(f"the header row repeats {tab.repeated} time{'s' if tab.repeated > 1 else ''} between the rows "
-                     f"(runs appended to one file, or a header per page): passed over")
-    if tab.footer:
-        notes.append(f"{tab.footer} line{'s' if tab.footer > 1 else ''} of text after the last row passed over (a "
-                     f"summary, not part of the table)")
+    notes.extend(tab.notes())
     if "x" in cols:
         x = cols["x"][1] * _scale(path, cols["x"][0], units["x"], _LENGTH, "displacement")
         if stiffness is not None:

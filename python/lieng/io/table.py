@@ -59,6 +59,27 @@ class Table:
     def __len__(self):
         return len(self.lines)
 
+    def notes(self) -> list[str]:
+        """What reading the file passed over or took as it found it, in words."""
+        out = []
+        if self.preamble:
+            out.append(f"{self.preamble} lines of text above the header passed over (not part of the table: the "
+                       f"instrument's metadata)")
+        if self.dropped:
+            out.append(f"{self.dropped} rows with a missing value (empty, NaN) left out: the record is resampled "
+                       f"across them")
+        if self.encoding != "utf-8":
+            out.append(f"the file is not UTF-8: read as {self.encoding} text")
+        if self.comment_header:
+            out.append("the header is the comment line above the numbers (as numpy.savetxt writes it)")
+        if self.repeated:
+            out.append(f"the header row repeats {self.repeated} time{'s' if self.repeated > 1 else ''} between the "
+                       f"rows (runs appended to one file, or a header per page): passed over")
+        if self.footer:
+            out.append(f"{self.footer} line{'s' if self.footer > 1 else ''} of text after the last row passed over "
+                       f"(a summary, not part of the table)")
+        return out
+
 
 _UNIT = re.compile(r"^\s*(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$")
 #: ``time/s``, ``force / mN``, ``v0/(mm/s)``: the quantity over its unit (ISO 80000)
