@@ -27,14 +27,13 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     (its coefficient times the channel's peak-to-peak) over D.  With a
     normal *force* channel the load variation is measured directly: the
     relative peak-to-peak of the part of N locked to the motion (fitted in
-    each drive direction apart); or, where N changes more along the record
-    than with the stick-slip (a tilted track, a cam: N following the
-    slider's position along the track) by the margin or more, the relative
-    range of its slow course (the cycles' mean load as a trend in time plus
-    a sinusoid in travel), with the friction change that course explains as
-    the effect size and its own test that the friction level follows it
-    (:func:`_slow_load`; a load the friction does not follow is a sensor's
-    drift).  A friction drift that the recorded normal channel accounts for
+    each drive direction apart); or, where N changes more apart from the
+    stick-slip than with it (a tilted track, a cam: N following the
+    slider's position along the track; an exogenous course in time) by the
+    margin or more, the relative range of that part's mean over each cycle,
+    with the friction change it explains as the effect size and its own
+    test that the peaks (the static limit) follow it (:func:`_slow_load`;
+    a load the friction does not follow is a sensor's drift).  A friction drift that the recorded normal channel accounts for
     is then not named apart (``drift_per_load``: the drift of the level
     less its relation with the channel).  Needs a normal channel that
     varies.
@@ -266,8 +265,9 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
 
 def cycle_means(y: np.ndarray, c: Cycles) -> np.ndarray:
     """y's mean over each cycle: from the trough before its peak (the stick
-    that loads it; the record's start for the first) to its own trough
-    (what changes within a cycle, a line at several fn, averages out)."""
+    that loads it; for the first, as long before its peak as its slip
+    lasts) to its own trough (what changes within a cycle, a line at
+    several fn, averages out)."""
     cs = np.r_[0.0, np.cumsum(y)]
     e = c.trough_i.astype(int) + 1
     a = np.r_[max(int(c.peak_i[0]) - (e[0] - int(c.peak_i[0])), 0), e[:-1]]
@@ -275,7 +275,7 @@ def cycle_means(y: np.ndarray, c: Cycles) -> np.ndarray:
     return (cs[e] - cs[a]) / (e - a)
 
 
-def _slow_load(pr: Prepared, c: Cycles, y, mean: float, ylow, D: float | None = None):
+def _slow_load(pr: Prepared, c: Cycles, y, mean: float, ylow):
     """A normal force that changes apart from the stick-slip (with the
     travel, a tilted track or a cam, or in time, a servo's own course): its
     part not locked to the motion (:func:`.signals.y_locked`), its mean over
@@ -300,7 +300,7 @@ def _slow_load(pr: Prepared, c: Cycles, y, mean: float, ylow, D: float | None = 
     if not r >= MARGIN["load_variation"]:
         return None
     r_se = _jackknife(lambda keep: rng(free[keep]) / mean, c.n)
-    D = D or c.amplitude(pr.x) or 1.0
+    D = c.amplitude(pr.x) or 1.0
     span = rng(free)
 
     def slope(keep):

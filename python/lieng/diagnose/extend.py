@@ -602,13 +602,13 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
     """Scale the extension's own parameter(s) of ``best`` by a factor in
     [0, 2] chosen by golden-section search on the training error (the level
     refitted each time).  Returns (params, training error)."""
-    names = [n for n in SCALED.get(effect, ()) if np.any(getattr(best, n) if getattr(best, n) is not None else 0)]
+    names = [n for n in SCALED.get(effect, ()) if getattr(best, n) is not None and np.any(getattr(best, n))]
     if not names:
         return best, judge.error(best, bool(best.trig_ay))
     with_y = bool(best.trig_ay)
 
     def make(f):
-        q = best.copy(**{n: f * getattr(best, n) for n in names if getattr(best, n) is not None})
+        q = best.copy(**{n: f * getattr(best, n) for n in names})
         return _fit_level(pr, q, fn, target, target_mask, ylow=ylow if q.load_k else None)
 
     def cost(f):
