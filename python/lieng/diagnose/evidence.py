@@ -38,8 +38,10 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     less its relation with the channel).  Needs a normal channel that
     varies.
 ``static_ageing``
-    The peak against the log of the stick time (trough to next peak, also
-    across a hold): the change over the record's whole range of stick times,
+    The peak (per unit load, with a normal force recorded: its part not
+    locked to the motion) against the log of the stick time (trough to next
+    peak, also across a hold): the change over the record's whole range of
+    stick times,
     over D, one-sided (the peak grows with the stick time).  Needs stick
     times that vary.
 ``triggering``
@@ -336,8 +338,10 @@ def stick_loading(pr: Prepared, c: Cycles, k) -> np.ndarray:
     return np.array([float(np.max(a[i:j + 1])) for i, j in zip(lo, hi)])
 
 
-def _ageing(pr: Prepared, c: Cycles):
-    _, ts, pk = stick_times(pr, c)
+def _ageing(pr: Prepared, c: Cycles, unit=None):
+    k, ts, pk = stick_times(pr, c)
+    if unit is not None:
+        pk = pk / unit[c.peak_i[k + 1]]   # the static limit per unit load (Amontons)
     if ts.size < 4:
         return 0.0, math.inf, 0.0
     lt = np.log(ts)
@@ -581,7 +585,16 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     st["twin_branch"], se["twin_branch"] = v / D, e / D
     v, e, yspan, *slow = _load(pr, c, fn, ylow, y, y_is_force)
     st["load_variation"], se["load_variation"] = (v, e) if y_is_force else (v / D, e / D)
-    v, e, lrange = _ageing(pr, c)
+    unit = None
+    if y_is_force and ylow is not None:
+        # a recorded normal force: the peaks are read per unit of its part not locked to the motion (a load
+        # that changes between the sticks changes the peaks and the stick times together, which is no ageing;
+        # a load locked to the motion is the same at every peak of a stick-slip)
+        fit, dmean = y_locked(pr.x, c.v, y, directions(pr))
+        free = ylow - (fit - dmean)
+        m = float(np.mean(free))
+        unit = free / m if abs(m) > 0 and np.all(free * np.sign(m) > 0.2 * abs(m)) else None
+    v, e, lrange = _ageing(pr, c, unit)
     st["static_ageing"], se["static_ageing"] = v / D, e / D
     v, e, f_tr, sig = _triggering(pr, c, fn, y, y_is_force, D)
     st["triggering"], se["triggering"] = v, e
