@@ -45,11 +45,11 @@ import math
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.baseline import (Params, characteristic, identify, model_drive, model_y, pr_like, run_slice,
-                                     simulate, slip_friction)
+from lieng.diagnose.baseline import (Params, characteristic, identify, model_drive, model_y, run_slice, simulate,
+                                     slip_friction)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
-from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
+from lieng.diagnose.segment import Cycles, Prepared, first_below, stick_part, travel
 
 __all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds", "unconfirmed"]
 
