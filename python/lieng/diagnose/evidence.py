@@ -217,7 +217,7 @@ def _twin_rc(pr: Prepared, c: Cycles, fn: float, lo: float = 0.25, hi: float = 0
     return est(np.ones(diffs.size, bool)), _jackknife(est, diffs.size)
 
 
-def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
+def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False, lock=None):
     if ylow is None:
         return 0.0, math.inf, 0.0
     idx, s, F, br, sid = slip_friction(pr, c, fn)
@@ -259,7 +259,7 @@ def _load(pr: Prepared, c: Cycles, fn: float, ylow, y=None, y_is_force=False):
         return float((np.percentile(lock, 97.5) - np.percentile(lock, 2.5)) / mean)
 
     fast = rel(np.ones(10, bool))
-    slow = _slow_load(pr, c, y, mean, ylow)
+    slow = _slow_load(pr, c, y, mean, lock)
     if slow is not None and slow[0] > fast:
         return slow[0], slow[1], span, slow[2:]
     return fast, _jackknife(rel, 10), span
@@ -277,10 +277,11 @@ def cycle_means(y: np.ndarray, c: Cycles) -> np.ndarray:
     return (cs[e] - cs[a]) / (e - a)
 
 
-def _slow_load(pr: Prepared, c: Cycles, y, mean: float, ylow):
+def _slow_load(pr: Prepared, c: Cycles, y, mean: float, lock):
     """A normal force that changes apart from the stick-slip (with the
     travel, a tilted track or a cam, or in time, a servo's own course): its
-    part not locked to the motion (:func:`.signals.y_locked`), its mean over
+    part not locked to the motion (y less ``lock``, its part locked to the
+    motion over the record: :func:`.signals.y_locked`), its mean over
     each cycle (:func:`cycle_means`), and whether the static limit (the
     peak) follows it.
     Read only where that part spans the load margin (5 % of the mean load:
@@ -289,10 +290,9 @@ def _slow_load(pr: Prepared, c: Cycles, y, mean: float, ylow):
     change it explains over D, its error, the one-sided p of the peaks'
     slope on it: a load the friction does not follow is a sensor's drift,
     not an effect) or None."""
-    if c.n < 8 or ylow is None:
+    if c.n < 8 or lock is None:
         return None
-    fit, dmean = y_locked(pr.x, c.v, y, directions(pr))
-    free = cycle_means(y - (fit - dmean), c)
+    free = cycle_means(y - lock, c)
     pk = pr.x[c.peak_i]
 
     def rng(v):
@@ -583,15 +583,19 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
     ylow = lowpass(y, pr.dt, 1.5 * fn) if y is not None else None
     v, e = _twin_arcs(pr, c, fn) if arcs else _twin_rc(pr, c, fn)
     st["twin_branch"], se["twin_branch"] = v / D, e / D
-    v, e, yspan, *slow = _load(pr, c, fn, ylow, y, y_is_force)
+    # a normal force's part locked to the motion, over the record (each direction apart, less its mean)
+    lock = None
+    if y_is_force and ylow is not None:
+        fit, dmean = y_locked(pr.x, c.v, y, directions(pr))
+        lock = fit - dmean
+    v, e, yspan, *slow = _load(pr, c, fn, ylow, y, y_is_force, lock)
     st["load_variation"], se["load_variation"] = (v, e) if y_is_force else (v / D, e / D)
     unit = None
-    if y_is_force and ylow is not None:
+    if lock is not None:
         # a recorded normal force: the peaks are read per unit of its part not locked to the motion (a load
         # that changes between the sticks changes the peaks and the stick times together, which is no ageing;
         # a load locked to the motion is the same at every peak of a stick-slip)
-        fit, dmean = y_locked(pr.x, c.v, y, directions(pr))
-        free = ylow - (fit - dmean)
+        free = ylow - lock
         m = float(np.mean(free))
         unit = free / m if abs(m) > 0 and np.all(free * np.sign(m) > 0.2 * abs(m)) else None
     v, e, lrange = _ageing(pr, c, unit)
