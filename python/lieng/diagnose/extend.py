@@ -45,11 +45,11 @@ import math
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.baseline import (Params, characteristic, identify, model_drive, model_y, run_slice, simulate,
-                                     slip_friction)
+from lieng.diagnose.baseline import (Params, characteristic, identify, model_drive, model_y, pr_like, run_slice,
+                                     simulate, slip_friction)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
-from lieng.diagnose.segment import Cycles, Prepared, first_below, stick_part, travel
+from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
 
 __all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds", "unconfirmed"]
 
@@ -304,32 +304,6 @@ class Judge:
         return e if math.isfinite(e) else math.inf
 
 
-def slip_minima(x: np.ndarray, state: np.ndarray) -> np.ndarray:
-    """The troughs of a simulated trace: the lowest sample of each slip
-    (each run of ``state`` 0 that ends in an arrest), in linear time (a
-    noise-free trace needs no cycle finder; on a 750 000-sample record the
-    finder took most of a level fit's time)."""
-    slip = state == 0
-    edge = np.diff(np.r_[0, slip.astype(np.int8), 0])
-    a, b = np.flatnonzero(edge == 1), np.flatnonzero(edge == -1)
-    keep = b < x.size                     # a slip still running at the record's end has no trough yet
-    a, b = a[keep], b[keep]
-    if a.size == 0:
-        return np.array([], int)
-    idx = np.empty(2 * a.size, int)
-    idx[0::2], idx[1::2] = a, b
-    mins = np.minimum.reduceat(x, idx)[0::2]          # the minimum over [a_j, b_j)
-    seg = np.full(x.size, -1)
-    for_seg = np.zeros(x.size + 1, int)
-    np.add.at(for_seg, a, 1)
-    np.add.at(for_seg, b, -1)
-    inside = np.cumsum(for_seg[:-1]) > 0
-    seg[inside] = np.repeat(np.arange(a.size), b - a)
-    hit = np.flatnonzero(inside & (x == mins[np.maximum(seg, 0)]))
-    _, first = np.unique(seg[hit], return_index=True)
-    return hit[first]
-
-
 def _fit_level(pr, p: Params, fn, target, tr_mask, ylow=None, it=5):
     """Move the characteristic's level so that the simulated mean trough on
     the training part matches ``target``."""
@@ -339,10 +313,13 @@ def _fit_level(pr, p: Params, fn, target, tr_mask, ylow=None, it=5):
     off = 0.0
     for _ in range(it):
         q = p.copy(fg=np.minimum(fg0 + off, p.fs))
-        xs, _, state = simulate(pr, q, fn, ylow)
-        ti = slip_minima(xs, state)
-        m = tr_mask[ti]
-        trv = float(np.mean(xs[ti][m])) if np.any(m) else p.fs
+        xs, _, _ = simulate(pr, q, fn, ylow)
+        try:
+            cc = find_cycles(pr_like(pr, xs), fn)
+            m = tr_mask[cc.trough_i] if cc.n else np.array([], bool)
+            trv = float(np.mean(xs[cc.trough_i][m])) if np.any(m) else p.fs
+        except LiengInputError:
+            trv = p.fs
         if trv > target:
             hi = off
         else:
