@@ -17,7 +17,7 @@ from pathlib import Path
 
 from lieng.errors import LiengInputError
 
-__all__ = ["read_text", "head", "split_lines", "MAX_BYTES"]
+__all__ = ["read_text", "read_table_text", "head", "split_lines", "MAX_BYTES"]
 
 #: the largest input read (bytes): 2 GiB (a 20-million-row table)
 MAX_BYTES = 2 * 1024**3
@@ -43,14 +43,7 @@ def read_text(path, *, encoding: str = "utf-8", what: str = "file", max_bytes: i
         Missing, a directory, not a regular file, a symlink loop, not
         readable, too large, or not valid text in ``encoding``.
     """
-    p = _check(path, what, max_bytes)
-    try:
-        with open(p, "rb") as fh:
-            raw = fh.read(max_bytes + 1)
-    except OSError as exc:
-        raise LiengInputError(f"{path}: cannot be read ({exc.strerror or exc})") from None
-    if len(raw) > max_bytes:
-        raise LiengInputError(f"{path}: larger than the {max_bytes} bytes a {what} may have")
+    raw = _read_raw(path, what, max_bytes)
     if encoding == "utf-8" and raw.startswith(b"\xef\xbb\xbf"):
         raw = raw[3:]
     try:
@@ -85,6 +78,39 @@ def head(path, nbytes: int = 4096, *, what: str = "file") -> str:
     except OSError as exc:
         raise LiengInputError(f"{path}: cannot be read ({exc.strerror or exc})") from None
     return raw.removeprefix(b"\xef\xbb\xbf").decode("utf-8", errors="replace")
+
+
+def read_table_text(path, *, max_bytes: int = MAX_BYTES) -> tuple[str, str]:
+    """The text of a table as instruments export it, and its encoding:
+    UTF-8 (a byte-order mark is dropped); else UTF-16 with its byte-order
+    mark; else Windows-1252 (a Latin-1 export: "Kraft [N]", "µm").  A file
+    with NUL bytes and none of these is refused (a binary file)."""
+    raw = _read_raw(path, "table", max_bytes)
+    try:
+        return raw.decode("utf-8").removeprefix("\ufeff"), "utf-8"
+    except UnicodeDecodeError:
+        pass
+    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        try:
+            return raw.decode("utf-16"), "utf-16"
+        except UnicodeDecodeError:
+            pass
+    if b"\x00" in raw:
+        raise LiengInputError(f"{path}: not valid UTF-8 text (a binary file?)")
+    return raw.decode("cp1252", errors="replace"), "windows-1252"
+
+
+def _read_raw(path, what: str, max_bytes: int) -> bytes:
+    """The bytes of a regular file no larger than ``max_bytes``."""
+    p = _check(path, what, max_bytes)
+    try:
+        with open(p, "rb") as fh:
+            raw = fh.read(max_bytes + 1)
+    except OSError as exc:
+        raise LiengInputError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    if len(raw) > max_bytes:
+        raise LiengInputError(f"{path}: larger than the {max_bytes} bytes a {what} may have")
+    return raw
 
 
 def _check(path, what: str, max_bytes: int) -> Path:

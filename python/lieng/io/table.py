@@ -15,7 +15,7 @@ from typing import Sequence
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.io.inputs import read_text, split_lines
+from lieng.io.inputs import read_table_text, split_lines
 
 __all__ = ["read_columns", "read_table", "Table"]
 
@@ -262,7 +262,7 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
         An unreadable file, a row with too few cells, a non-numeric or
         non-finite cell (naming its line and column).
     """
-    text, encoding = _decode(path)
+    text, encoding = read_table_text(path)
     if text.startswith("\ufeff"):
         text = text[1:]
     rows = split_lines(text)
@@ -289,7 +289,7 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
         above = next((rows[k] for k in range(k0 - 1, -1, -1) if rows[k].strip()), None)
         if above is not None and _is_comment(above):
             cand = above.lstrip().lstrip("#%/").strip()
-            sep_c, cells_c = _split_header(cand, rows[k0])
+            _, cells_c = _split_header(cand, rows[k0])
             if len([c for c in cells_c if c]) == _numeric_cells(rows[k0]) and not _numeric_cells(cand):
                 header_row, from_comment = cand, True
                 first, k1, k0 = rows[k0], k0, k0 - 1
@@ -402,26 +402,6 @@ def _cells(row: str, sep):
         import csv
         return next(csv.reader([row], delimiter=sep))
     return row.split(sep) if sep else row.split()
-
-
-def _decode(path):
-    """The table's text and its encoding: UTF-8; else UTF-16 with its
-    byte-order mark; else Windows-1252 (a Latin-1 export: "Kraft [N]", "µm")."""
-    try:
-        return read_text(path, what="table"), "utf-8"
-    except LiengInputError as exc:
-        if "not valid UTF-8" not in str(exc):
-            raise
-    with open(path, "rb") as fh:
-        raw = fh.read()
-    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
-        try:
-            return raw.decode("utf-16"), "utf-16"
-        except UnicodeDecodeError:
-            pass
-    if b"\x00" in raw:
-        raise LiengInputError(f"{path}: not valid UTF-8 text (a binary file?)")
-    return raw.decode("cp1252", errors="replace"), "windows-1252"
 
 
 def read_columns(path, required: Sequence[str], optional: Sequence[str], expect: str) -> dict:
