@@ -127,3 +127,43 @@ def test_a_column_of_no_role_neither_refuses_nor_drops_rows(tmp_path):
     r = _read(tmp_path, "extra.csv", text)
     assert r.t.size == ref.t.size and not any("missing" in n for n in r.notes)
     np.testing.assert_allclose(r.x, ref.x, rtol=1e-12)
+
+
+LONG_T = np.round(np.arange(5000) * 1e-3, 6).tolist()
+LONG_F = np.round(0.5 + 0.1 * np.sin(2 * np.pi * 7.0 * np.array(LONG_T)), 6).tolist()
+
+
+@pytest.mark.parametrize("sep,dec", [(",", "."), ("\t", ","), (" ", "."), (";", ",")])
+def test_a_long_plain_table_reads_as_row_by_row(tmp_path, sep, dec, monkeypatch):
+    """Long plain blocks are parsed at once by NumPy; the numbers, line numbers
+    and units are those of the row-by-row reader (which the fast path is
+    switched off to compare with)."""
+    import lieng.io.table as table
+
+    body = "".join(f"{a!r}{sep}{b!r}\n".replace(".", dec) if dec == "," else f"{a!r}{sep}{b!r}\n"
+                   for a, b in zip(LONG_T, LONG_F))
+    p = tmp_path / "long.txt"
+    p.write_text(f"t [s]{sep}F [N]\n" + body.replace("\n", "\n\n", 3))
+    fast = table.read_table(p, "t,F", missing="drop")
+    monkeypatch.setattr(table, "_plain_block", lambda *a, **k: None)
+    slow = table.read_table(p, "t,F", missing="drop")
+    assert fast.names == slow.names and fast.units == slow.units and fast.lines == slow.lines
+    for n in fast.names:
+        assert np.array_equal(fast.columns[n], slow.columns[n])
+    assert np.array_equal(fast.columns["F [N]" if "F [N]" in fast.names else fast.names[1]], LONG_F)
+
+
+@pytest.mark.parametrize("bad,msg", [("abc", "line 4003, column"), ("inf", "not a finite number"),
+                                     ("\u22122", None), ("1_0", "line 4003")])
+def test_a_long_table_with_one_bad_cell_names_its_line(tmp_path, bad, msg):
+    rows = [f"{a!r},{b!r}" for a, b in zip(LONG_T, LONG_F)]
+    rows[4001] = f"{LONG_T[4001]!r},{bad}"
+    p = tmp_path / "long.csv"
+    p.write_text("t [s],F [N]\n" + "\n".join(rows) + "\n")
+    from lieng.io.table import read_table
+
+    if msg is None:                       # a typeset minus sign is a number
+        assert read_table(p, "t,F").columns[read_table(p, "t,F").names[1]][4001] == -2.0
+        return
+    with pytest.raises(LiengInputError, match=msg):
+        read_table(p, "t,F")

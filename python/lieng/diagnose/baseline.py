@@ -277,7 +277,7 @@ def trough_mean(pr, c_fn, x):
     """Mean trough of a simulated trace (cycles found the record's way)."""
     from lieng.diagnose.segment import find_cycles
 
-    cc = find_cycles(pr_like(pr, x), c_fn)
+    cc = find_cycles(pr_like(pr, x), c_fn, speeds=False)
     if cc.n == 0:
         return None
     return float(np.mean(x[cc.trough_i]))
@@ -333,7 +333,7 @@ def _cycles_of(pr, p, fn) -> int:
     from lieng.diagnose.segment import find_cycles
 
     xs, _, _ = simulate(pr, p, fn)
-    return find_cycles(pr_like(pr, xs), fn).n
+    return find_cycles(pr_like(pr, xs), fn, speeds=False).n
 
 
 def _fit_level(pr, c, fn, p, iters):

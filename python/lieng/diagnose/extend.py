@@ -315,7 +315,7 @@ def _fit_level(pr, p: Params, fn, target, tr_mask, ylow=None, it=5):
         q = p.copy(fg=np.minimum(fg0 + off, p.fs))
         xs, _, _ = simulate(pr, q, fn, ylow)
         try:
-            cc = find_cycles(pr_like(pr, xs), fn)
+            cc = find_cycles(pr_like(pr, xs), fn, speeds=False)
             m = tr_mask[cc.trough_i] if cc.n else np.array([], bool)
             trv = float(np.mean(xs[cc.trough_i][m])) if np.any(m) else p.fs
         except LiengInputError:

@@ -340,7 +340,7 @@ def _light(x, dt, fn, win: int, noise: float):
     sixteenth of the stroke), until 8 times the noise it lets through is
     within half the swing; the thresholds then read that noise."""
     xl = smooth(x, dt, 1.0, 0, win=win)
-    span = float(np.percentile(xl, 98) - np.percentile(xl, 2))
+    span = float(np.subtract(*np.percentile(xl, [98, 2])))
     if not 8 * noise > 0.5 * span:
         return xl, noise
     wmax = max(int(0.25 / fn / dt) | 1, 7) if fn is not None else max(win, (x.size // 16) | 1)
@@ -350,8 +350,10 @@ def _light(x, dt, fn, win: int, noise: float):
     return (xl if w == win else smooth(x, dt, 1.0, 0, win=w)), noise * _sg_gain(w)
 
 
-def find_cycles(p: Prepared, fn: float | None) -> Cycles:
-    """The stick-slip cycles of every stroke (see the module docstring)."""
+def find_cycles(p: Prepared, fn: float | None, speeds: bool = True) -> Cycles:
+    """The stick-slip cycles of every stroke (see the module docstring);
+    with ``speeds=False`` the peaks and troughs alone (``v`` and ``a`` are
+    left empty: a simulated trace's troughs, read many times over)."""
     dt = p.dt
     noise = noise_level(p.x)
     base_win = 5 if fn is None or 0.25 / fn / dt < 9 else max(5, int(0.08 / fn / dt) | 1)
@@ -369,12 +371,15 @@ def find_cycles(p: Prepared, fn: float | None) -> Cycles:
         xr = p.x[sl]
         if fn is not None:
             win = max(int(round(0.25 / fn / dt)) | 1, 7)
+        if not speeds:
+            pass
+        elif fn is not None:
             vs.append(smooth(xr, dt, fn, 1))
             acc.append(smooth(xr, dt, fn, 2))
         else:
             vs.append(smooth(xr, dt, 1.0, 1, win=7))
             acc.append(smooth(xr, dt, 1.0, 2, win=7))
-        span = float(np.percentile(xl, 98) - np.percentile(xl, 2))
+        span = float(np.subtract(*np.percentile(xl, [98, 2])))
         if not span > 1e-9 * float(np.max(np.abs(xl))):
             continue                      # a flat stroke (within rounding): no cycle in it
         h0 = max(0.25 * span, 8 * noise)
@@ -405,7 +410,8 @@ def find_cycles(p: Prepared, fn: float | None) -> Cycles:
             last_peak = len(peaks) - 1
     del allx
     c = Cycles(peak_i=np.asarray(peaks, int), trough_i=np.asarray(troughs, int), stroke=np.asarray(strk, int),
-               next_ok=np.asarray(nxt, bool), v=np.concatenate(vs), a=np.concatenate(acc),
+               next_ok=np.asarray(nxt, bool), v=np.concatenate(vs) if speeds else np.empty(0),
+               a=np.concatenate(acc) if speeds else np.empty(0),
                win=win if win is not None else 7)
     return c
 

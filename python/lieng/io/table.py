@@ -317,6 +317,14 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
                     units = [c.strip("[]() ") for c in cells]
                     start = k1 + 1
     skip = [bool(unused and unused(n, u)) for n, u in zip(names, units)]
+    fast = _plain_block(rows, start, sep, ncol, skip, comma, missing)
+    if fast is not None:
+        arr, lines = fast
+        tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
+        tab.dropped, tab.preamble = 0, skipped
+        tab.dates = {}
+        tab.encoding, tab.comment_header, tab.repeated, tab.footer = encoding, from_comment, 0, 0
+        return tab
     data, lines = [], []
     dropped = repeated = footer = 0
     head_key = header_row.strip()
@@ -384,6 +392,44 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
     tab.dates = {names[c]: str(np.datetime64(ns, "ns")) for c, ns in dates.items()}
     tab.encoding, tab.comment_header, tab.repeated, tab.footer = encoding, from_comment, repeated, footer
     return tab
+
+
+def _plain_block(rows, start: int, sep, ncol: int, skip, comma: bool, missing: str):
+    """The data rows parsed at once by NumPy's reader, when they are plain:
+    every row has a finite number in each read column and nothing the
+    row-by-row reader treats apart (quotes, comments, a repeated header,
+    date-times, a footer, a missing value, a typeset minus, an
+    out-of-range value).  ``None`` otherwise: the row-by-row reader then
+    reads them (and names the line of anything wrong)."""
+    block = rows[start:]
+    if len(block) < 1000 or (any(skip) and not (missing == "drop" and sep)):
+        return None                       # (a short row is refused unless it may miss a value)
+    lines = [start + 1 + i for i, q in enumerate(block) if q.strip()]
+    if not lines:
+        return None
+    text = "\n".join(block)
+    if any(ch in text for ch in ('"', "#", "%", "//", "_", "\u2212")) or max(map(len, block)) > MAX_LINE:
+        return None
+    if comma:
+        text = text.replace(",", ".")
+    cols = [j for j in range(ncol) if not skip[j]]
+    if not cols:
+        return None
+    import io
+    import warnings
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            got = np.loadtxt(io.StringIO(text), delimiter=sep, usecols=cols, ndmin=2, dtype=float,
+                             comments=None)
+    except (ValueError, UserWarning, IndexError):
+        return None
+    if got.shape[0] != len(lines) or not np.all(np.isfinite(got)) or np.any(np.abs(got) > MAX_ABS):
+        return None
+    arr = np.full((len(lines), ncol), math.nan)
+    arr[:, cols] = got
+    return arr, lines
 
 
 #: a summary after the last row is passed over only below this many rows of data
