@@ -41,6 +41,14 @@ VARIANTS = {
                                                   + _rows(lambda a, b: f"{a}\t{b}\n"),
     "a logger's date-time stamps": "Timestamp,F [N]\n" + _rows(lambda a, b: f"2024-03-01 10:22:{1 + a:06.3f},{b}\n"),
     "ISO date-times with a T": "Date_Time;F [N]\n" + _rows(lambda a, b: f"2024-03-01T23:59:{58 + a:06.3f};{b}\n"),
+    "day-first date-times": "Date/Time,F [N]\n" + _rows(lambda a, b: f"01/03/2024 10:22:{1 + a:06.3f},{b}\n"),
+    "German date-times": "Zeit;F [N]\n" + _rows(lambda a, b: f"01.03.2024 9:22:{1 + a:06.3f};{b}\n".replace(".", ",")
+                                              .replace(",", ".", 2)),
+    "the time of day alone": "Time,F [N]\n" + _rows(lambda a, b: f"10:22:{1 + a:06.3f},{b}\n"),
+    "the time of day through midnight": "Time,F [N]\n" + _rows(
+        lambda a, b: f"{'23:59:59.9' if a < 0.1 else '00:00:00.0'}{int(round(1000 * a)) % 100:02d},{b}\n"),
+    "a drive position logged on every tenth row": "t [s],F [N],position [mm]\n" + "".join(
+        f"{T[i]},{F[i]}," + (f"{T[i]:.4f}" if i % 10 == 0 else "") + "\n" for i in range(200)),
 }
 
 
@@ -167,3 +175,30 @@ def test_a_long_table_with_one_bad_cell_names_its_line(tmp_path, bad, msg):
         return
     with pytest.raises(LiengInputError, match=msg):
         read_table(p, "t,F")
+
+
+@pytest.mark.parametrize("stamp,rate", [(1e-3, 2000.0), (1.0, 100.0)])
+def test_time_stamps_coarser_than_the_sampling_are_spread_evenly(tmp_path, stamp, rate):
+    """A logger writing 1 ms stamps at 2 kHz (or whole seconds at 100 Hz):
+    the stamps repeat; the samples are evenly spaced over the stamps' span
+    (not refused as a time that repeats), and said so."""
+    n = 3000
+    tt = np.arange(n) / rate
+    ff = 0.5 + 0.1 * np.sin(2 * np.pi * 3.0 * tt * 100 / rate)
+    p = tmp_path / "stamps.csv"
+    p.write_text("t [s],F [N]\n" + "".join(f"{np.floor(a / stamp) * stamp:.4f},{b:.6f}\n" for a, b in zip(tt, ff)))
+    r = read_record(p, v0=1.0, stiffness=K)
+    assert r.t.size == n
+    np.testing.assert_allclose(np.diff(r.t), 1.0 / rate, rtol=0.02)
+    assert any("time stamps repeat" in m for m in r.notes)
+
+
+def test_a_time_that_stops_is_still_refused(tmp_path):
+    """Repeats that are not a coarse stamp (the clock stands still for a
+    stretch) name the line."""
+    tt = np.arange(2000) * 1e-3
+    tt[500:900] = tt[500]
+    p = tmp_path / "stops.csv"
+    p.write_text("t [s],F [N]\n" + "".join(f"{a:.4f},{0.5 + 0.1 * np.sin(40 * a):.6f}\n" for a in tt))
+    with pytest.raises(LiengInputError, match="time repeats"):
+        read_record(p, v0=1.0, stiffness=K)

@@ -44,7 +44,7 @@ MAX_SAMPLES = 5_000_000
 MIN_SAMPLES = 50
 
 _NAMES = {
-    "t": ("t", "time", "timestamp", "datetime", "date_time", "zeit", "temps"),
+    "t": ("t", "time", "timestamp", "datetime", "date_time", "date", "zeit", "temps"),
     "x": ("x", "disp", "displacement", "extension", "spring"),
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity", "geschwindigkeit"),
@@ -285,7 +285,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     """
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
-                     missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None)
+                     missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None,
+                     sparse=lambda name, unit: _column_role(name, unit)[0] in ("position", "v0", "y", "N"))
     cols, units = {}, {}
     for name, unit in zip(tab.names, tab.units):
         role, unit = _column_role(name, unit)
@@ -336,6 +337,15 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             _fail(f"{path}: {n} samples in the longest run: too short for stick-slip analysis (at least {MIN_SAMPLES})")
         d = np.diff(t)
         bad = np.flatnonzero(d <= 0)
+    if bad.size and np.all(d[bad] == 0):
+        stamped = _stamps_quantised(t)
+        if stamped is not None:
+            t, q = stamped
+            runs_note = ((runs_note + "; ") if runs_note else "") + (
+                f"the time stamps repeat (written to {q:.3g} s, coarser than the sampling): the samples are taken "
+                f"as evenly spaced, {(t[-1] - t[0]) / (t.size - 1):.4g} s apart, over the stamps' span")
+            d = np.diff(t)
+            bad = np.flatnonzero(d <= 0)
     if bad.size:
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
@@ -408,6 +418,25 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                  "1/m" if mu_note and "N" not in cols else "N/m")
     condition(out)
     return out
+
+
+def _stamps_quantised(t):
+    """Time stamps written coarser than the sampling (1 ms stamps at 2 kHz,
+    whole seconds at 100 Hz): they repeat, never go back, and stay within one
+    stamp step of a straight line in the row number.  Returns the evenly
+    spaced times that line gives and the step, or None when the stamps are
+    not that (gaps, a clock that stops)."""
+    d = np.diff(t)
+    pos = d[d > 0]
+    if pos.size < 2 or np.any(d < 0):
+        return None
+    q = float(np.min(pos))
+    i = np.arange(t.size, dtype=float)
+    slope, icpt = np.polyfit(i, t, 1)
+    res = t - (icpt + slope * i)
+    if not (slope > 0 and float(np.max(np.abs(res))) <= 1.01 * q and np.all(np.abs(pos / q - np.round(pos / q)) < 0.01)):
+        return None
+    return icpt + slope * i, q
 
 
 def record_from_arrays(t, x, v0, y=None, *, y_is_force=False, source="arrays") -> Record:

@@ -55,6 +55,9 @@ class Table:
         self.comment_header = False
         self.repeated = 0
         self.footer = 0
+        #: columns logged on fewer rows, filled linearly between their values:
+        #: name -> (rows with a value, rows)
+        self.filled = {}
 
     def __len__(self):
         return len(self.lines)
@@ -75,6 +78,9 @@ class Table:
         if self.repeated:
             out.append(f"the header row repeats {self.repeated} time{'s' if self.repeated > 1 else ''} between the "
                        f"rows (runs appended to one file, or a header per page): passed over")
+        for name, (k, n) in self.filled.items():
+            out.append(f"column {name} has a value on {k} of {n} rows (logged less often): read linearly between "
+                       f"its values")
         if self.footer:
             out.append(f"{self.footer} line{'s' if self.footer > 1 else ''} of text after the last row passed over "
                        f"(a summary, not part of the table)")
@@ -108,15 +114,37 @@ def _name_unit(cell: str) -> tuple:
 
 #: a logger's date-time stamp: ISO 8601 date, a blank or T, the time of day to any fraction of a second
 _DATETIME = re.compile(r"^\s*(\d{4}-\d{2}-\d{2})[ T](\d{2}:\d{2}:\d{2}(?:[.,]\d+)?)\s*$")
+#: a day-first date as Europe writes it (05/03/2024, 05.03.2024; month-first when the second number
+#: exceeds 12), then the time of day
+_DMY = re.compile(r"^\s*(\d{1,2})([./])(\d{1,2})\2(\d{4})[ T](\d{1,2}:\d{2}:\d{2}(?:[.,]\d+)?)\s*$")
+#: the time of day alone (a logger's clock: 14:02:03.125)
+_CLOCK = re.compile(r"^\s*(\d{1,2}):(\d{2}):(\d{2}(?:[.,]\d+)?)\s*$")
+_DAY_NS = 86_400 * 10 ** 9
 
 
 def _datetime_ns(cell: str):
-    """A date-time cell as integer nanoseconds, or None when it is not one."""
+    """A date-time cell as integer nanoseconds, or None when it is not one:
+    an ISO 8601 date-time, a day-first date and time (dd/mm/yyyy or
+    dd.mm.yyyy), or the time of day alone (nanoseconds from midnight;
+    :func:`read_table` adds a day where the clock passes midnight)."""
     m = _DATETIME.match(cell)
-    if not m:
+    if m:
+        day, clock = m.group(1), m.group(2)
+    elif (m := _DMY.match(cell)):
+        a, b = int(m.group(1)), int(m.group(3))
+        d, mo = (b, a) if b > 12 >= a else (a, b)
+        day, clock = f"{m.group(4)}-{mo:02d}-{d:02d}", m.group(5)
+        clock = clock if clock.index(":") == 2 else "0" + clock
+    elif (m := _CLOCK.match(cell)):
+        h, mi = int(m.group(1)), int(m.group(2))
+        sec = float(m.group(3).replace(",", "."))
+        if h > 23 or mi > 59 or not sec < 61.0:
+            return None
+        return (h * 3600 + mi * 60) * 10 ** 9 + int(round(sec * 1e9))
+    else:
         return None
     try:
-        return int(np.datetime64(f"{m.group(1)}T{m.group(2).replace(',', '.')}", "ns").astype(np.int64))
+        return int(np.datetime64(f"{day}T{clock.replace(',', '.')}", "ns").astype(np.int64))
     except ValueError:
         return None
 
@@ -225,7 +253,7 @@ def _header_after_preamble(rows, content) -> int:
     return h
 
 
-def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
+def read_table(path, expect: str, missing: str = "error", unused=None, sparse=None) -> Table:
     """Read a delimited numeric table with a header row.
 
     Parameters
@@ -251,6 +279,12 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
         ``unused(name, unit)`` true for a column the caller does not read (a
         temperature, a comment): its cells are not parsed (NaN in the table)
         and neither a word nor a gap in it refuses or drops a row.
+    sparse : callable, optional
+        ``sparse(name, unit)`` true for a column that may be logged on fewer
+        rows than the others (a stage's position every tenth row): with
+        ``missing="drop"`` a gap in it does not drop the row; it is filled
+        linearly between the column's values (:attr:`Table.filled` counts
+        them).
 
     Returns
     -------
@@ -317,6 +351,8 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
                     units = [c.strip("[]() ") for c in cells]
                     start = k1 + 1
     skip = [bool(unused and unused(n, u)) for n, u in zip(names, units)]
+    thin = [bool(missing == "drop" and sparse and not skip[j] and sparse(n, u))
+            for j, (n, u) in enumerate(zip(names, units))]
     fast = _plain_block(rows, start, sep, ncol, skip, comma, missing)
     if fast is not None:
         arr, lines = fast
@@ -329,6 +365,7 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
     dropped = repeated = footer = 0
     head_key = header_row.strip()
     dates = {}                            # column -> its first date-time (ns): the others are seconds from it
+    days, last_ns = {}, {}                # a time of day alone: days passed (ns), the last stamp
     for r in range(start, len(rows)):
         row = rows[r]
         if not row.strip() or _is_comment(row):
@@ -348,6 +385,9 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
                 continue
             cell = _unquote(cells[c]) if c < len(cells) else ""
             if missing == "drop" and cell.lower() in MISSING:
+                if thin[c]:
+                    vals.append(math.nan)     # filled below
+                    continue
                 vals = None
                 break
             try:
@@ -364,8 +404,17 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
                     raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell[:40]!r} is not a "
                                           f"number" + (" (nor a date-time like its first row's)" if c in dates
                                                        else "")) from None
+                if ns < _DAY_NS and c in dates:
+                    # the time of day alone: a fall of more than half a day is the clock passing midnight
+                    while ns + days.get(c, 0) < last_ns[c] - _DAY_NS // 2:
+                        days[c] = days.get(c, 0) + _DAY_NS
+                    ns += days.get(c, 0)
+                last_ns[c] = ns
                 val = (ns - dates.setdefault(c, ns)) * 1e-9
             if not math.isfinite(val):
+                if thin[c] and math.isnan(val):
+                    vals.append(val)
+                    continue
                 if missing == "drop" and math.isnan(val):
                     vals = None
                     break
@@ -389,7 +438,22 @@ def read_table(path, expect: str, missing: str = "error", unused=None) -> Table:
     tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
     tab.dropped = dropped
     tab.preamble = skipped
-    tab.dates = {names[c]: str(np.datetime64(ns, "ns")) for c, ns in dates.items()}
+    for c in np.flatnonzero(thin):
+        have = np.isfinite(arr[:, c])
+        if have.all():
+            continue
+        if np.count_nonzero(have) < 2:
+            raise LiengInputError(f"{path}: column {names[c]}: a value on {np.count_nonzero(have)} of {len(data)} "
+                                  f"rows: too few to read it between them")
+        k = np.arange(len(data), dtype=float)
+        arr[:, c] = np.interp(k, k[have], arr[have, c])
+        tab.filled[names[c]] = (int(np.count_nonzero(have)), len(data))
+    tab.dates = {}
+    for c, ns in dates.items():
+        if ns < _DAY_NS:                  # the time of day alone
+            tab.dates[names[c]] = "the time of day " + str(np.datetime64(ns, "ns"))[11:]
+        else:
+            tab.dates[names[c]] = str(np.datetime64(ns, "ns"))
     tab.encoding, tab.comment_header, tab.repeated, tab.footer = encoding, from_comment, repeated, footer
     return tab
 
