@@ -1380,3 +1380,19 @@ def test_a_load_modulated_in_time_is_named_and_not_read_as_ageing():
     d = diagnose(record_from_arrays(t, x, 1.5, N, y_is_force=True), 12.0)
     assert d.effect == "load_variation" and d.gain >= 0.3
     assert not d.evidence["static_ageing"]["significant"]
+
+
+def test_a_clipped_sensor_is_warned_of_and_a_quantised_one_is_not():
+    """A force sensor at its limit flattens the peaks where the force would
+    go on rising (read as a lower static friction): warned of.  The same
+    record read through a coarse ADC (its top level holds about as long as
+    the levels under it) is not."""
+    from lieng.analysis.synth import synthesize
+
+    r = synthesize("none", 1)
+    top = float(np.percentile(r.x, 95))
+    d = diagnose(record_from_arrays(r.t, np.minimum(r.x, top), r.v0), r.fn)
+    assert any("sits at its largest value" in w for w in d.warnings)
+    q = 0.005 * float(np.ptp(r.x))
+    d = diagnose(record_from_arrays(r.t, np.round(r.x / q) * q, r.v0), r.fn)
+    assert not any("limit" in w for w in d.warnings)

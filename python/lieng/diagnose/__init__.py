@@ -271,7 +271,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: it is the uncertainty of a given --fn; give --fn")
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
-    warnings = []
+    warnings = list(rec.warnings)
     if not rec.drive_recorded and len(pr.strokes) == 1:
         big = float(np.max(np.abs(rec.x))) if rec.x.size else 0.0
         neg, pos = (float(np.mean(rec.x < -0.2 * big)), float(np.mean(rec.x > 0.2 * big))) if big > 0 else (0.0, 0.0)

@@ -85,6 +85,8 @@ class Record:
         The drive came from a column (not a nominal ``--v0``).
     notes : list of str
         What was done to the data (resampling, spikes, hum).
+    warnings : list of str
+        What in the data may mislead the diagnosis (a sensor at its limit).
     """
 
     t: np.ndarray
@@ -95,6 +97,7 @@ class Record:
     drive_recorded: bool = False
     source: str = "record"
     notes: list = field(default_factory=list)
+    warnings: list = field(default_factory=list)
     fn_hint: float | None = None
     #: a force record read without --stiffness: x is the force (N) times
     #: 1000 until the diagnosis estimates the stiffness (N/m) from the sticks
@@ -420,6 +423,36 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     return out
 
 
+#: a channel sits at its extreme value on at least this fraction of its samples (and 10) to be questioned
+LIMIT_SHARE = 0.002
+
+
+def _at_limit(v) -> str | None:
+    """Whether a channel sits at its largest (or smallest) value for longer
+    than it takes to pass through the band just inside it: a clipped sensor
+    (flat tops, three samples long or more, where the signal would go on)
+    rather than a quantised reading (whose top level holds about as long
+    as the levels under it; one of fewer than 50 levels is not judged).
+    Returns words saying so, or None."""
+    n = v.size
+    lo, hi = np.percentile(v, [2, 98])
+    band = 0.02 * float(hi - lo)
+    if not band > 0:
+        return None
+    levels = np.unique(v[(v >= lo) & (v <= hi)]).size     # a reading coarse against its span is not judged
+    for end, sign in ((float(np.max(v)), 1.0), (float(np.min(v)), -1.0)):
+        at = v == end
+        k = int(np.count_nonzero(at))
+        if k < max(10, LIMIT_SHARE * n):
+            continue
+        inside = int(np.count_nonzero((sign * (end - v) > 0) & (sign * (end - v) <= band)))
+        runs = int(np.count_nonzero(np.diff(at.astype(np.int8)) == 1)) + int(at[0])
+        if k > 2 * inside and runs >= 2 and k >= 3 * runs and levels >= 50:
+            return (f"sits at its {'largest' if sign > 0 else 'smallest'} value, {end:.6g}, on {k} samples in {runs} "
+                    f"stretches")
+    return None
+
+
 def _stamps_quantised(t):
     """Time stamps written coarser than the sampling (1 ms stamps at 2 kHz,
     whole seconds at 100 Hz): they repeat, never go back, and stay within one
@@ -652,11 +685,17 @@ def _hum_lines(x, dt):
 
 
 def condition(rec: Record) -> None:
-    """Spikes and mains hum out of x (and y), in place, with notes."""
+    """Spikes and mains hum out of x (and y), in place, with notes; a
+    channel at its sensor's limit is warned of (:func:`_at_limit`)."""
     for name in ("x", "y"):
         v = getattr(rec, name)
         if v is None:
             continue
+        what = _at_limit(v)
+        if what:
+            unit = "x, mm" if name == "x" else ("N" if rec.y_is_force else "y, mm")
+            rec.warnings.append(f"the {'friction' if name == 'x' else 'normal'} channel ({unit}) {what}: a sensor or "
+                                f"amplifier at its limit? The clipped part is read as it was recorded")
         v = _despiked(v, name, rec.notes)
         tt = rec.t - rec.t[0]
         for ff, amp, a, b in _hum_lines(v, rec.dt):
