@@ -202,3 +202,41 @@ def test_a_time_that_stops_is_still_refused(tmp_path):
     p.write_text("t [s],F [N]\n" + "".join(f"{a:.4f},{0.5 + 0.1 * np.sin(40 * a):.6f}\n" for a in tt))
     with pytest.raises(LiengInputError, match="time repeats"):
         read_record(p, v0=1.0, stiffness=K)
+
+
+@pytest.mark.parametrize("kind", ["mat", "mat-row-vectors", "npz"])
+def test_named_arrays_read_as_the_plain_file(tmp_path, kind):
+    """A MATLAB file (as scipy.io.savemat writes v5) or a NumPy archive of
+    named vectors reads as the table with those names; a variable of another
+    length is passed over and said."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    p = tmp_path / ("rec.npz" if kind == "npz" else "rec.mat")
+    data = {"t": T, "F": F, "k_spring": np.array([K])}
+    if kind == "npz":
+        np.savez(p, **data)
+    else:
+        import scipy.io
+
+        scipy.io.savemat(p, data, oned_as="row" if kind == "mat-row-vectors" else "column")
+    r = read_record(p, v0=1.0, stiffness=K)
+    np.testing.assert_array_equal(r.t, ref.t)
+    np.testing.assert_array_equal(r.x, ref.x)
+    assert any("k_spring" in n and "passed over" in n for n in r.notes)
+
+
+@pytest.mark.parametrize("content,msg", [(b"MATLAB 7.3 MAT-file, Platform: GLNXA64" + bytes(200), "v7.3"),
+                                         (b"not a mat file at all" * 10, "not a readable MATLAB file")])
+def test_an_unreadable_mat_file_is_named(tmp_path, content, msg):
+    p = tmp_path / "rec.mat"
+    p.write_bytes(content)
+    with pytest.raises(LiengInputError, match=msg):
+        read_record(p, v0=1.0, stiffness=K)
+
+
+def test_a_mat_file_of_a_matrix_alone_is_refused(tmp_path):
+    import scipy.io
+
+    p = tmp_path / "rec.mat"
+    scipy.io.savemat(p, {"data": np.column_stack([T, F])})
+    with pytest.raises(LiengInputError, match="no numeric vector"):
+        read_record(p, v0=1.0, stiffness=K)

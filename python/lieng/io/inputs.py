@@ -17,7 +17,7 @@ from pathlib import Path
 
 from lieng.errors import LiengInputError
 
-__all__ = ["read_text", "read_table_text", "head", "split_lines", "MAX_BYTES"]
+__all__ = ["read_text", "read_table_text", "read_bytes", "head", "split_lines", "MAX_BYTES"]
 
 #: the largest input read (bytes): 2 GiB (a 20-million-row table)
 MAX_BYTES = 2 * 1024**3
@@ -98,6 +98,12 @@ def read_table_text(path, *, max_bytes: int = MAX_BYTES) -> tuple[str, str]:
     if b"\x00" in raw:
         raise LiengInputError(f"{path}: not valid UTF-8 text (a binary file?)")
     return raw.decode("cp1252", errors="replace"), "windows-1252"
+
+
+def read_bytes(path, what: str = "file", max_bytes: int = MAX_BYTES) -> bytes:
+    """The bytes of a regular file no larger than ``max_bytes`` (a binary
+    format: MATLAB, NumPy), refused as :func:`read_text` refuses."""
+    return _read_raw(path, what, max_bytes)
 
 
 def _read_raw(path, what: str, max_bytes: int) -> bytes:

@@ -15,7 +15,7 @@ from typing import Sequence
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.io.inputs import read_table_text, split_lines
+from lieng.io.inputs import read_bytes, read_table_text, split_lines
 
 __all__ = ["read_columns", "read_table", "Table"]
 
@@ -55,6 +55,8 @@ class Table:
         self.comment_header = False
         self.repeated = 0
         self.footer = 0
+        #: variables of an array file (.mat, .npz) not read as columns
+        self.passed_over = []
         #: columns logged on fewer rows, filled linearly between their values:
         #: name -> (rows with a value, rows)
         self.filled = {}
@@ -78,6 +80,9 @@ class Table:
         if self.repeated:
             out.append(f"the header row repeats {self.repeated} time{'s' if self.repeated > 1 else ''} between the "
                        f"rows (runs appended to one file, or a header per page): passed over")
+        if self.passed_over:
+            out.append(f"variables {', '.join(self.passed_over)[:200]} passed over (not vectors of the record's "
+                       f"length)")
         for name, (k, n) in self.filled.items():
             out.append(f"column {name} has a value on {k} of {n} rows (logged less often): read linearly between "
                        f"its values")
@@ -296,6 +301,8 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         An unreadable file, a row with too few cells, a non-numeric or
         non-finite cell (naming its line and column).
     """
+    if str(path).lower().endswith(ARRAY_FILES):
+        return _read_arrays(path, expect)
     text, encoding = read_table_text(path)
     if text.startswith("\ufeff"):
         text = text[1:]
@@ -455,6 +462,64 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         else:
             tab.dates[names[c]] = str(np.datetime64(ns, "ns"))
     tab.encoding, tab.comment_header, tab.repeated, tab.footer = encoding, from_comment, repeated, footer
+    return tab
+
+
+#: files of named arrays read as tables: MATLAB (v4 to v7) and NumPy archives
+ARRAY_FILES = (".mat", ".npz")
+
+
+def _read_arrays(path, expect: str) -> Table:
+    """A MATLAB ``.mat`` file (v4 to v7) or a NumPy ``.npz`` archive as a
+    table: each numeric vector (1-D, n x 1 or 1 x n) of the most common
+    length is a column named by its variable (no units: give them by the
+    names' conventions or the options); variables of other lengths and
+    shapes are passed over and said."""
+    import io
+    import zipfile
+
+    raw = read_bytes(path, "record")
+    try:
+        if str(path).lower().endswith(".npz"):
+            with np.load(io.BytesIO(raw), allow_pickle=False) as z:
+                arrays = {k: z[k] for k in z.files}
+        else:
+            if raw[:128].find(b"MATLAB 7.3") >= 0 or raw[:8] == b"\x89HDF\r\n\x1a\n":
+                raise LiengInputError(f"{path}: a MATLAB v7.3 (HDF5) file: save it with save(..., '-v7') or "
+                                      f"export a CSV ({expect})")
+            import scipy.io
+
+            arrays = {k: v for k, v in scipy.io.loadmat(io.BytesIO(raw), squeeze_me=False).items()
+                      if not k.startswith("__")}
+    except LiengInputError:
+        raise
+    except (ValueError, OSError, zipfile.BadZipFile, TypeError, NotImplementedError, KeyError) as exc:
+        raise LiengInputError(f"{path}: not a readable {'NumPy archive' if str(path).lower().endswith('.npz') else 'MATLAB file'} "
+                              f"({str(exc)[:80]})") from None
+    vec = {}
+    other = []
+    for k, v in arrays.items():
+        a = np.asarray(v)
+        if a.dtype.kind in "iuf" and a.ndim <= 2 and a.size >= 2 and (a.ndim == 1 or min(a.shape) == 1):
+            vec[k] = a.astype(float).ravel()
+        else:
+            other.append(k)
+    if not vec:
+        raise LiengInputError(f"{path}: no numeric vector in it (variables: {', '.join(sorted(arrays))[:120]}); "
+                              f"expected vectors named as the columns {expect}")
+    lengths = [v.size for v in vec.values()]
+    n = max(set(lengths), key=lambda m: (lengths.count(m), m))
+    names = [k for k, v in vec.items() if v.size == n]
+    other += [k for k in vec if vec[k].size != n]
+    for k in names:
+        bad = np.flatnonzero(~np.isfinite(vec[k]) | (np.abs(vec[k]) > MAX_ABS))
+        if bad.size:
+            raise LiengInputError(f"{path}: variable {k}, element {bad[0] + 1}: {vec[k][bad[0]]} is not a finite "
+                                  f"measurement")
+    if n > MAX_ROWS:
+        raise LiengInputError(f"{path}: more than {MAX_ROWS} samples: split the record")
+    tab = Table(path, names, [""] * len(names), {k: vec[k] for k in names}, np.arange(1, n + 1))
+    tab.passed_over = sorted(other)
     return tab
 
 
