@@ -688,10 +688,13 @@ def test_a_shear_stress_record_stands_for_the_force(tmp_path):
     read from the sticks (Pa/m), so --stiffness (N/m) is refused, naming the
     column."""
     from lieng.diagnose import read_record
-    from lieng.diagnose.read import _role
+    from lieng.diagnose.read import _column_role, _role
     from lieng.errors import LiengInputError
 
     assert _role("Shear stress", "MPa") == "F" and _role("Normal stress", "MPa") == "N"
+    # the symbols and bare names a rock-mechanics export uses (an audit's "tau [kPa]" was refused)
+    assert [_column_role(n, u)[0] for n, u in (("tau", "kPa"), ("stress", "MPa"), ("tau_kPa", ""), ("sigma", "MPa"),
+                                                ("sigma_n", "kPa"))] == ["F", "F", "F", "N", "N"]
     t = np.arange(0.0, 20.0, 0.005)
     tau = 3.0 + 0.5 * ((t * 2.37) % 1.0)
     p = tmp_path / "biax.csv"

@@ -49,9 +49,11 @@ _NAMES = {
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity", "geschwindigkeit"),
     "F": ("f", "friction", "force", "friction_force", "ft", "ff", "f_f", "fr", "fx", "tangential", "tangential_force",
-          "lateral_force", "kraft", "reibkraft", "reibungskraft", "tangentialkraft"),
+          "lateral_force", "kraft", "reibkraft", "reibungskraft", "tangentialkraft", "tau", "stress", "shear_stress",
+          "tau_s"),
     "mu": ("mu", "µ", "μ", "cof", "coefficient_of_friction", "friction_coefficient", "fnorm", "mu_k"),
-    "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load", "normalkraft"),
+    "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load", "normalkraft", "sigma",
+          "sigma_n", "normal_stress"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg"),
 }
 _LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6}
@@ -173,7 +175,7 @@ def _column_role(name: str, unit: str = ""):
     role = _role(name, unit)
     if role is None and not unit and "_" in name:
         stem, suffix = name.rsplit("_", 1)
-        if suffix and any(suffix.lower() in units_of for units_of in (_LENGTH, _VELOCITY, _TIME, _FORCE)):
+        if suffix and any(suffix.lower() in units_of for units_of in (_LENGTH, _VELOCITY, _TIME, _FORCE, _STRESS)):
             role, unit = _role(stem, suffix), suffix
     return role, unit
 
