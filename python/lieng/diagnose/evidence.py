@@ -358,14 +358,18 @@ def _ageing(pr: Prepared, c: Cycles, unit=None):
 
 def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
     """(statistic, its standard error, the line's frequency, the signal the line was found in)."""
-    f0 = 1.0 / float(np.median(c.periods(pr.t))) if np.any(c.next_ok) else None
+    # the harmonics' comb: the mean period (the median's error, times the harmonic's number, moved a high
+    # harmonic off the exclusion), its wander the periods' spread
+    per = c.periods(pr.t) if np.any(c.next_ok) else np.array([])
+    f0 = 1.0 / float(np.mean(per)) if per.size else None
+    jit = float(np.std(per) / np.mean(per)) if per.size >= 3 else 0.0
     if y is not None:
         sig = y - y_locked(pr.x, c.v, y, directions(pr))[0]
         f, a, snr = spectral_line(sig, pr.dt, 2.0 * fn)
         scale = abs(float(np.mean(y))) if y_is_force else D
     else:
         sig = pr.x
-        f, a, snr = spectral_line(sig, pr.dt, 2.0 * fn, f0, by="snr")
+        f, a, snr = spectral_line(sig, pr.dt, 2.0 * fn, f0, by="snr", jitter=jit)
         scale = D
     if not scale > 0:
         return 0.0, math.inf, f, sig

@@ -43,10 +43,13 @@ def _jackknife(values_fn, n_units, groups=10):
     return float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
 
 
-def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude"):
+def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float = 0.0):
     """The strongest line above fmin and, with f0, off the harmonics of f0
-    (by more than a bin): (frequency, amplitude, local signal-to-noise of the
-    line), from a Hann-windowed FFT.  ``by="snr"``: the line that stands
+    (by more than two bins, and by more than ``jitter`` times the harmonic's
+    frequency, at most a fifth of f0: a stick-slip whose period wanders by a
+    relative ``jitter`` spreads its h-th harmonic over h times that):
+    (frequency, amplitude, local signal-to-noise of the line), from a
+    Hann-windowed FFT.  ``by="snr"``: the line that stands
     highest above its neighbourhood (the mean amplitude 4 to 30 bins either
     side) rather than the largest, so that a response that falls with
     frequency (a slider's, as 1 / (f / fn)**2) does not prefer the low end."""
@@ -61,7 +64,8 @@ def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude"):
         for h in range(1, 8):
             ok &= np.abs(f - base * h) > 3.0 / (n * dt)
     if f0 is not None and f0 > 0:
-        ok &= np.abs(f / f0 - np.round(f / f0)) * f0 > 2.0 / (n * dt)
+        h = np.round(f / f0)
+        ok &= np.abs(f / f0 - h) * f0 > np.maximum(2.0 / (n * dt), np.minimum(jitter * h * f0, 0.2 * f0))
     if not np.any(ok):
         return 0.0, 0.0, 0.0
     if by == "snr":
