@@ -228,7 +228,7 @@ def _simulate(m, seed_rng, vd, s_arr=None, geom=None, hard=None, beta=0.0, theta
     oe[0] = Xd - x; ov[0] = 0.0; of[0] = s * (KA * x - SA); os_[0] = s
     # local names for the hot loop (the two populations unrolled)
     s_kap, s_a, s_ub, s_lb, s_R, s_tau, s_d, s_dl, s_birth = S.kap, S.a, S.ub, S.lb, S.R, S.tau, S.d, S.dl, S.birth
-    f_kap, f_a, f_ub, f_lb, f_R, f_tau, f_d, f_dl = Fp.kap, Fp.a, Fp.ub, Fp.lb, Fp.R, Fp.tau, Fp.d, Fp.dl
+    f_kap, f_a, f_ub, f_lb, f_R, f_tau, f_d = Fp.kap, Fp.a, Fp.ub, Fp.lb, Fp.R, Fp.tau, Fp.d
     s_ubmin, s_lbmax, s_Rmin = S.ubmin, S.lbmax, S.Rmin
     f_ubmin, f_lbmax, f_Rmin = Fp.ubmin, Fp.lbmax, Fp.Rmin
     ivr = 1.0 / vr
