@@ -371,12 +371,10 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True) -> Cycles:
         xr = p.x[sl]
         if fn is not None:
             win = max(int(round(0.25 / fn / dt)) | 1, 7)
-        if not speeds:
-            pass
-        elif fn is not None:
+        if speeds and fn is not None:
             vs.append(smooth(xr, dt, fn, 1))
             acc.append(smooth(xr, dt, fn, 2))
-        else:
+        elif speeds:
             vs.append(smooth(xr, dt, 1.0, 1, win=7))
             acc.append(smooth(xr, dt, 1.0, 2, win=7))
         span = float(np.subtract(*np.percentile(xl, [98, 2])))
