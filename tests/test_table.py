@@ -240,3 +240,22 @@ def test_a_mat_file_of_a_matrix_alone_is_refused(tmp_path):
     scipy.io.savemat(p, {"data": np.column_stack([T, F])})
     with pytest.raises(LiengInputError, match="no numeric vector"):
         read_record(p, v0=1.0, stiffness=K)
+
+
+def test_a_displacement_beside_the_force_that_moves_one_way_is_the_drive(tmp_path):
+    """A tribometer export with the stage's travel as `x [um]` beside the
+    friction force: x only goes one way, so it is the drive's position (a
+    black-box audit found it read as the spring's extension, the force
+    ignored); a spring extension beside a force is still the extension."""
+    v = 0.5                                        # mm/s
+    pos_um = 1e3 * v * T
+    p = tmp_path / "fx.csv"
+    p.write_text("t [s],F [N],x [um]\n" + "".join(f"{a},{b},{c:.4f}\n" for a, b, c in zip(T, F, pos_um)))
+    r = read_record(p, stiffness=K)
+    np.testing.assert_allclose(r.x, F / K * 1e3, rtol=1e-9)
+    assert np.median(r.vd) == pytest.approx(v, rel=0.02)
+    assert any("moves one way" in n for n in r.notes)
+    q = tmp_path / "fx2.csv"
+    q.write_text("t [s],F [N],x [mm]\n" + "".join(f"{a},{b},{b / K * 1e3}\n" for a, b in zip(T, F)))
+    r = read_record(q, v0=v, stiffness=K)
+    assert not any("moves one way" in n for n in r.notes)

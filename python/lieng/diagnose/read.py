@@ -301,6 +301,12 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                   f"the {role} channel?)")
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
+    drive_note = None
+    if "x" in cols and "F" in cols and "position" not in cols and "v0" not in cols and _one_way(cols["x"][1]):
+        # a displacement beside a force that only goes one way is the stage's travel, not the spring's extension
+        cols["position"], units["position"] = cols.pop("x"), units.pop("x")
+        drive_note = (f"column {cols['position'][0]} moves one way only (a stage's travel, not a spring's extension "
+                      f"beside the force {cols['F'][0]}): read as the drive's position")
     if rate is not None and not (math.isfinite(rate) and 1.0 / DT_RANGE[1] <= rate <= 1.0 / DT_RANGE[0]):
         _fail(f"--rate {rate:g}: the sampling rate must be a number from {1.0 / DT_RANGE[1]:.3g} to "
               f"{1.0 / DT_RANGE[0]:.3g} Hz")
@@ -355,7 +361,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [mu_note] if mu_note else []
+    notes = [m for m in (mu_note, drive_note) if m]
     if runs_note:
         notes.append(runs_note)
     if dated:
@@ -453,6 +459,20 @@ def _at_limit(v) -> str | None:
             return (f"sits at its {'largest' if sign > 0 else 'smallest'} value, {end:.6g}, on {k} samples in {runs} "
                     f"stretches")
     return None
+
+
+def _one_way(x) -> bool:
+    """Whether a column moves one way only: lightly smoothed (a hundredth of
+    the record), its total variation is within a quarter of its net change
+    (a drive's travel; a spring's extension in stick-slip rises and falls
+    every cycle)."""
+    n = x.size
+    if n < 20:
+        return False
+    w = max(1, n // 100)
+    xs = np.convolve(x, np.ones(w) / w, mode="valid")
+    net = abs(float(xs[-1] - xs[0]))
+    return net > 0 and float(np.sum(np.abs(np.diff(xs)))) <= 1.25 * net
 
 
 def _stamps_quantised(t):
