@@ -363,85 +363,83 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     fast = _plain_block(rows, start, sep, ncol, skip, comma, missing)
     if fast is not None:
         arr, lines = fast
-        tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
-        tab.dropped, tab.preamble = 0, skipped
-        tab.dates = {}
-        tab.encoding, tab.comment_header, tab.repeated, tab.footer = encoding, from_comment, 0, 0
-        return tab
-    data, lines = [], []
-    dropped = repeated = footer = 0
-    head_key = header_row.strip()
-    dates = {}                            # column -> its first date-time (ns): the others are seconds from it
-    days, last_ns = {}, {}                # a time of day alone: days passed (ns), the last stamp
-    for r in range(start, len(rows)):
-        row = rows[r]
-        if not row.strip() or _is_comment(row):
-            continue
-        if len(row) > MAX_LINE:
-            raise LiengInputError(f"{path}: line {r + 1}: longer than {MAX_LINE} characters: not a table row")
-        if data and row.strip() == head_key:
-            repeated += 1                 # the header again: a second run appended to the file
-            continue
-        cells = _cells(row, sep)
-        if len(cells) < ncol and not (missing == "drop" and sep):
-            raise LiengInputError(f"{path}: line {r + 1}: {len(cells)} cells where the header has {ncol}")
-        vals = []
-        for c in range(ncol):
-            if skip[c]:
-                vals.append(math.nan)
+        dropped = repeated = footer = 0
+        dates = {}
+    else:
+        data, lines = [], []
+        dropped = repeated = footer = 0
+        head_key = header_row.strip()
+        dates = {}                            # column -> its first date-time (ns): the others are seconds from it
+        days, last_ns = {}, {}                # a time of day alone: days passed (ns), the last stamp
+        for r in range(start, len(rows)):
+            row = rows[r]
+            if not row.strip() or _is_comment(row):
                 continue
-            cell = _unquote(cells[c]) if c < len(cells) else ""
-            if missing == "drop" and cell.lower() in MISSING:
-                if thin[c]:
-                    vals.append(math.nan)     # filled below
+            if len(row) > MAX_LINE:
+                raise LiengInputError(f"{path}: line {r + 1}: longer than {MAX_LINE} characters: not a table row")
+            if data and row.strip() == head_key:
+                repeated += 1                 # the header again: a second run appended to the file
+                continue
+            cells = _cells(row, sep)
+            if len(cells) < ncol and not (missing == "drop" and sep):
+                raise LiengInputError(f"{path}: line {r + 1}: {len(cells)} cells where the header has {ncol}")
+            vals = []
+            for c in range(ncol):
+                if skip[c]:
+                    vals.append(math.nan)
                     continue
-                vals = None
-                break
-            try:
-                if c in dates:
-                    raise ValueError(cell)
-                # (a quoted cell of a comma-separated row may hold a decimal comma: "0,5")
-                val = _number(cell, comma or (sep == "," and "," in cell))
-            except ValueError:
-                ns = _datetime_ns(cell) if c in dates or not data else None
-                if ns is None and len(data) >= MIN_FOOTER_ROWS and _footer_from(rows, r):
-                    vals = "footer"
-                    break
-                if ns is None:
-                    raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell[:40]!r} is not a "
-                                          f"number" + (" (nor a date-time like its first row's)" if c in dates
-                                                       else "")) from None
-                if ns < _DAY_NS and c in dates:
-                    # the time of day alone: a fall of more than half a day is the clock passing midnight
-                    while ns + days.get(c, 0) < last_ns[c] - _DAY_NS // 2:
-                        days[c] = days.get(c, 0) + _DAY_NS
-                    ns += days.get(c, 0)
-                last_ns[c] = ns
-                val = (ns - dates.setdefault(c, ns)) * 1e-9
-            if not math.isfinite(val):
-                if thin[c] and math.isnan(val):
-                    vals.append(val)
-                    continue
-                if missing == "drop" and math.isnan(val):
+                cell = _unquote(cells[c]) if c < len(cells) else ""
+                if missing == "drop" and cell.lower() in MISSING:
+                    if thin[c]:
+                        vals.append(math.nan)     # filled below
+                        continue
                     vals = None
                     break
-                raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is not a finite number")
-            if abs(val) > MAX_ABS:
-                raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is out of range for a "
-                                      f"measurement (|value| > {MAX_ABS:g})")
-            vals.append(val)
-        if vals == "footer":
-            footer = sum(1 for q in rows[r:] if q.strip() and not _is_comment(q))
-            break
-        if vals is None:
-            dropped += 1
-            continue
-        data.append(vals)
-        lines.append(r + 1)
-    if dropped and dropped > MAX_MISSING * (dropped + len(data)):
-        raise LiengInputError(f"{path}: {dropped} of {dropped + len(data)} rows miss a value (more than "
-                              f"{100 * MAX_MISSING:g} %): not a record to resample")
-    arr = np.asarray(data, float).reshape(len(data), ncol)
+                try:
+                    if c in dates:
+                        raise ValueError(cell)
+                    # (a quoted cell of a comma-separated row may hold a decimal comma: "0,5")
+                    val = _number(cell, comma or (sep == "," and "," in cell))
+                except ValueError:
+                    ns = _datetime_ns(cell) if c in dates or not data else None
+                    if ns is None and len(data) >= MIN_FOOTER_ROWS and _footer_from(rows, r):
+                        vals = "footer"
+                        break
+                    if ns is None:
+                        raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell[:40]!r} is not a "
+                                              f"number" + (" (nor a date-time like its first row's)" if c in dates
+                                                           else "")) from None
+                    if ns < _DAY_NS and c in dates:
+                        # the time of day alone: a fall of more than half a day is the clock passing midnight
+                        while ns + days.get(c, 0) < last_ns[c] - _DAY_NS // 2:
+                            days[c] = days.get(c, 0) + _DAY_NS
+                        ns += days.get(c, 0)
+                    last_ns[c] = ns
+                    val = (ns - dates.setdefault(c, ns)) * 1e-9
+                if not math.isfinite(val):
+                    if thin[c] and math.isnan(val):
+                        vals.append(val)
+                        continue
+                    if missing == "drop" and math.isnan(val):
+                        vals = None
+                        break
+                    raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is not a finite number")
+                if abs(val) > MAX_ABS:
+                    raise LiengInputError(f"{path}: line {r + 1}, column {names[c]}: {cell} is out of range for a "
+                                          f"measurement (|value| > {MAX_ABS:g})")
+                vals.append(val)
+            if vals == "footer":
+                footer = sum(1 for q in rows[r:] if q.strip() and not _is_comment(q))
+                break
+            if vals is None:
+                dropped += 1
+                continue
+            data.append(vals)
+            lines.append(r + 1)
+        if dropped and dropped > MAX_MISSING * (dropped + len(data)):
+            raise LiengInputError(f"{path}: {dropped} of {dropped + len(data)} rows miss a value (more than "
+                                  f"{100 * MAX_MISSING:g} %): not a record to resample")
+        arr = np.asarray(data, float).reshape(len(data), ncol)
     tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
     tab.dropped = dropped
     tab.preamble = skipped
@@ -450,11 +448,11 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         if have.all():
             continue
         if np.count_nonzero(have) < 2:
-            raise LiengInputError(f"{path}: column {names[c]}: a value on {np.count_nonzero(have)} of {len(data)} "
+            raise LiengInputError(f"{path}: column {names[c]}: a value on {np.count_nonzero(have)} of {arr.shape[0]} "
                                   f"rows: too few to read it between them")
-        k = np.arange(len(data), dtype=float)
+        k = np.arange(arr.shape[0], dtype=float)
         arr[:, c] = np.interp(k, k[have], arr[have, c])
-        tab.filled[names[c]] = (int(np.count_nonzero(have)), len(data))
+        tab.filled[names[c]] = (int(np.count_nonzero(have)), arr.shape[0])
     tab.dates = {}
     for c, ns in dates.items():
         if ns < _DAY_NS:                  # the time of day alone
@@ -479,8 +477,9 @@ def _read_arrays(path, expect: str) -> Table:
     import zipfile
 
     raw = read_bytes(path, "record")
+    npz = str(path).lower().endswith(".npz")
     try:
-        if str(path).lower().endswith(".npz"):
+        if npz:
             with np.load(io.BytesIO(raw), allow_pickle=False) as z:
                 arrays = {k: z[k] for k in z.files}
         else:
@@ -494,7 +493,7 @@ def _read_arrays(path, expect: str) -> Table:
     except LiengInputError:
         raise
     except (ValueError, OSError, zipfile.BadZipFile, TypeError, NotImplementedError, KeyError) as exc:
-        raise LiengInputError(f"{path}: not a readable {'NumPy archive' if str(path).lower().endswith('.npz') else 'MATLAB file'} "
+        raise LiengInputError(f"{path}: not a readable {'NumPy archive' if npz else 'MATLAB file'} "
                               f"({str(exc)[:80]})") from None
     vec = {}
     other = []
