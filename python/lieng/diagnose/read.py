@@ -348,22 +348,18 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             _fail(f"{path}: {n} samples in the longest run: too short for stick-slip analysis (at least {MIN_SAMPLES})")
         d = np.diff(t)
         bad = np.flatnonzero(d <= 0)
-    if bad.size and np.all(d[bad] == 0):
-        stamped = _stamps_quantised(t)
-        if stamped is not None:
-            t, q = stamped
-            runs_note = ((runs_note + "; ") if runs_note else "") + (
-                f"the time stamps repeat (written to {q:.3g} s, coarser than the sampling): the samples are taken "
-                f"as evenly spaced, {(t[-1] - t[0]) / (t.size - 1):.4g} s apart, over the stamps' span")
-            d = np.diff(t)
-            bad = np.flatnonzero(d <= 0)
+    stamps_note = None
+    stamped = _stamps_quantised(t) if bad.size and np.all(d[bad] == 0) else None
+    if stamped is not None:
+        # (a line of positive slope: the times it gives increase, nothing is left bad)
+        (t, q), bad = stamped, bad[:0]
+        stamps_note = (f"the time stamps repeat (written to {q:.3g} s, coarser than the sampling): the samples are "
+                       f"taken as evenly spaced, {(t[-1] - t[0]) / (t.size - 1):.4g} s apart, over the stamps' span")
     if bad.size:
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (mu_note, drive_note) if m]
-    if runs_note:
-        notes.append(runs_note)
+    notes = [m for m in (mu_note, drive_note, runs_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
