@@ -1422,3 +1422,32 @@ def test_a_stick_slip_whose_period_wanders_has_no_line_at_its_harmonics():
     assert off(spectral_line(x, dt, 5.0, f0, by="snr", jitter=jit)[0]) > 0.2
     f = spectral_line(x + 0.05 * np.sin(2 * np.pi * 10.47 * t), dt, 5.0, f0, by="snr", jitter=jit)[0]
     assert f == pytest.approx(10.47, abs=0.02)
+
+
+def test_a_rebound_after_each_arrest_weighs_on_no_model():
+    """The metric's slip waveform is the slip's, from its peak to its arrest:
+    a rig's second mode that rebounds after every arrest (0.1 D at 6 fn,
+    decaying as exp(-2 fn t), added to a Coulomb slider written in plain
+    NumPy) is the rig's, which no model of the slider has, and leaves a
+    model's held-out error as it was (it would add about 0.03 to it, on
+    every model alike, at the window's instants past the arrest)."""
+    from lieng.diagnose.baseline import fit_baseline
+    from lieng.diagnose.extend import Judge
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    t, x, _ = _forced_coulomb(0.0)
+    fn = 10.0
+    pr = prepare(record_from_arrays(t, x, 2.0))
+    c = find_cycles(pr, fn)
+    base = fit_baseline(pr, c, fn)
+    lo, hi = float(pr.t[0]), float(pr.t[-1]) + 1.0
+    e0 = Judge(pr, c, fn, lo, hi).error(base)
+    D = c.amplitude(pr.x)
+    xr = pr.x.copy()
+    for i in c.trough_i:
+        tt = pr.t[i:] - pr.t[i]
+        xr[i:] += 0.1 * D * np.exp(-tt * fn * 2.0) * np.sin(2 * np.pi * 6 * fn * tt)
+    pr.x = xr
+    e1 = Judge(pr, c, fn, lo, hi).error(base)
+    assert math.isfinite(e0) and e0 < 0.05
+    assert abs(e1 - e0) < 0.005

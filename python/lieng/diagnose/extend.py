@@ -29,6 +29,10 @@ the model of
   on the moment each slip's x crosses halfway from its peak to its trough,
   less that halfway level, over D, against the record's (aligned on the
   fall, so that a flat or creeping top does not decide where it starts);
+  only the instants within the record's slips (from the median peak to the
+  median arrest, relative to that crossing): what x does after the arrest,
+  a second mode's rebound or a sensor's ringing, is the rig's, which no
+  model of the slider has;
 * when the extension predicts a part of the normal channel that is not
   locked to the motion (triggering): the RMS difference, in time, between
   that part of the record's y and of the model's (each less the baseline's
@@ -57,7 +61,8 @@ TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles (the record's last 30 % with models fitted on its "
           "first 70 %, and its first 30 % with models fitted on its last 70 %), one cycle ahead from the record's own state (from "
           "each trough): stick time to the next slip's halfway crossing (/ mean period), peak and trough (/ drop D); "
-          "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing (/ D); "
+          "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing, those "
+          "within the record's slips (from peak to arrest) (/ D); "
           "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in "
           "time (/ spread of y)")
 
@@ -245,6 +250,14 @@ class Judge:
             if tslip.size else np.zeros((0, 3))
         waves = [w for _, w in slips if w is not None]
         self.wave = np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan)
+        # the waveform is the slip's, from its peak to its arrest (the median over the record's slips): what x
+        # does after the arrest (a second mode's rebound, a sensor's ringing) is the rig's, not the friction's,
+        # and no model of the slider has it; it would weigh on every model alike and dilute every gain
+        edges = [(t[int(c.peak_i[j])] - ts, t[int(c.trough_i[j])] - ts) for j, (ts, w) in zip(tgt, slips)
+                 if w is not None]
+        if edges:
+            a, b = np.median(np.asarray(edges), axis=0)
+            self.wave[(self.tau < a) | (self.tau > b)] = np.nan
         self.mask = (pr.t >= lo) & (pr.t < hi)
         if pr.y is not None:
             ys = pr.y[self.mask]
