@@ -792,7 +792,7 @@ def _core_peaks(vd, dt, fs=1.0, age_r=0.0, age_v=1.0):
     n = vd.size
     x, v, state, status = _core.core_slider(dt, 8, vd, np.ones(n), 2 * math.pi * 5.0, 0.0, fs,
                                             np.array([0.0, 100.0]), np.array([0.5, 0.5]), 0.0, np.zeros(2), 0.0, 1.0,
-                                            age_r, age_v, 0.0, 0.0, 0.0, 0.0, 0.0)
+                                            age_r, age_v, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     assert status == 0
     onset = np.flatnonzero((state[:-1] == 1) & (state[1:] == 0))
     return onset, x[onset]
@@ -1451,3 +1451,36 @@ def test_a_rebound_after_each_arrest_weighs_on_no_model():
     e1 = Judge(pr, c, fn, lo, hi).error(base)
     assert math.isfinite(e0) and e0 < 0.05
     assert abs(e1 - e0) < 0.005
+
+
+def test_an_ageing_limit_keeps_its_clock_across_a_reversal():
+    """The slider core starts stuck for ``t0`` seconds already: its static
+    limit is then FS (1 + a ln(1 + t0/tau)) from the first step (the stated
+    law), so a contact that rested through a reversal and its dwell is not
+    released by a spring loaded past FS alone; ``simulate`` and the judged
+    predictions from a stroke's start pass the rest since the last arrest
+    (``stuck_for``)."""
+    from lieng import _core
+    from lieng.diagnose.baseline import stuck_for
+
+    n, dt, fs, a, tau = 200, 0.001, 1.0, 0.1, 0.01
+    vd = np.full(n, 5.0)
+
+    def first_slip(x0, t0):
+        x, v, state, status = _core.core_slider(dt, 8, vd, np.ones(n), 2 * math.pi * 5.0, 0.0, fs,
+                                                np.array([0.0, 100.0]), np.array([0.5, 0.5]), 0.0, np.zeros(2),
+                                                a, tau, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, x0, t0)
+        assert status == 0
+        slip = np.flatnonzero(state == 0)
+        return slip[0] if slip.size else None
+
+    assert first_slip(1.2, 0.0) == 1                       # above FS with a fresh contact: at once
+    lim = fs * (1 + a * math.log(1 + 10.0 / tau))          # 1.69 after 10 s of rest
+    k = first_slip(1.2, 10.0)
+    # stuck until x = 1.2 + 5 t reaches the limit, which grows with t0 + t
+    t_hit = next(i * dt for i in range(1, n) if 1.2 + 5.0 * i * dt > fs * (1 + a * math.log(1 + (10.0 + i * dt) / tau)))
+    assert lim > 1.2 and k is not None and abs(k * dt - t_hit) <= 2 * dt
+    t = np.arange(6.0)
+    assert stuck_for(t, np.array([1, 1, 1, 1, 1, 1]), 2.0) == 7.0
+    assert stuck_for(t, np.array([1, 0, 0, 1, 1, 1]), 2.0) == 2.0
+    assert stuck_for(t, np.array([1, 1, 1, 1, 1, 0]), 2.0) == 0.0

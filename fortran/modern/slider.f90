@@ -54,7 +54,7 @@ contains
    end function phi
 
    subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, dg, age_a, age_tau, age_r, age_v, &
-                         kx, xref, creep0, creep1, x0, x, v, state, status)
+                         kx, xref, creep0, creep1, x0, t0, x, v, state, status)
       integer, intent(in) :: n                !< number of output samples (>= 2)
       real(wp), intent(in) :: dt              !< output sample interval (s), > 0
       integer, intent(in) :: nsub             !< sub-steps per sample (>= 1)
@@ -77,6 +77,7 @@ contains
       real(wp), intent(in) :: creep0          !< relative velocity in stick as a fraction of the drive
       real(wp), intent(in) :: creep1          !< creep growing as (x / limit)**4 towards the static limit
       real(wp), intent(in) :: x0              !< initial displacement (mm), starts stuck
+      real(wp), intent(in) :: t0              !< how long it has been stuck at the start (s, >= 0: the ageing's clock)
       real(wp), intent(out) :: x(n)           !< displacement (mm)
       real(wp), intent(out) :: v(n)           !< velocity (mm/s)
       integer, intent(out) :: state(n)        !< 1 stick, 0 slip
@@ -88,7 +89,7 @@ contains
       status = st_ok
       x = 0.0_wp; v = 0.0_wp; state = 0
       if (n < 2 .or. nsub < 1 .or. ns < 1 .or. .not. (dt > 0.0_wp) .or. .not. (wn > 0.0_wp) &
-          .or. .not. (age_tau > 0.0_wp) .or. .not. (age_v > 0.0_wp)) then
+          .or. .not. (age_tau > 0.0_wp) .or. .not. (age_v > 0.0_wp) .or. .not. (t0 >= 0.0_wp)) then
          status = st_bad_argument
          return
       end if
@@ -97,7 +98,7 @@ contains
       xs = x0
       vs_ = vd(1)
       stick = .true.
-      t_st = 0.0_wp
+      t_st = t0
       vl = abs(vd(1))
       b = -1.0_wp
       sprev = 0.0_wp

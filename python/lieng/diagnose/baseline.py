@@ -131,13 +131,30 @@ def simulate(pr: Prepared, p: Params, fn: float, ylow=None, x0=None):
         Displacement (mm), velocity (mm/s), 1 in stick / 0 in slip.
     """
     xs, vs, ss = [], [], []
+    rest = 0.0           # how long the contact has been stuck at a stroke's start (unknown at the record's)
     for k, sl in enumerate(pr.stroke_slices()):
         start = float(pr.x[sl][0] if x0 is None else x0[k])
-        x, v, state = run_slice(pr, p, fn, sl, start, ylow)
+        if k and sl.start > 0:
+            rest += float(pr.t[sl.start] - pr.t[sl.start - 1])     # (a dwell cut out between the strokes)
+        x, v, state = run_slice(pr, p, fn, sl, start, ylow, t_stick=rest)
+        rest = stuck_for(pr.t[sl], state, rest)
         xs.append(x)
         vs.append(v)
         ss.append(state)
     return np.concatenate(xs), np.concatenate(vs), np.concatenate(ss)
+
+
+def stuck_for(t, state, rest: float = 0.0) -> float:
+    """How long the slider has been stuck at the last of the samples
+    ``t`` (its states ``state``, 1 in stick), having been stuck for
+    ``rest`` at the first: the contact rests through a reversal and its
+    dwell, and a static limit that ages keeps its clock across them."""
+    if state.size == 0:
+        return rest
+    if state[-1] != 1:
+        return 0.0
+    slip = np.flatnonzero(state != 1)
+    return float(t[-1] - t[slip[-1] + 1]) if slip.size else rest + float(t[-1] - t[0])
 
 
 def model_drive(pr: Prepared, p: Params, sl: slice):
@@ -149,9 +166,10 @@ def model_drive(pr: Prepared, p: Params, sl: slice):
     return vdd
 
 
-def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=None):
+def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=None, t_stick: float = 0.0):
     """The slider on the samples ``sl`` of the record's grid (within one
-    stroke), started in stick at the displacement ``start``: (x, v, state)."""
+    stroke), started in stick at the displacement ``start``, stuck for
+    ``t_stick`` seconds already (the ageing's clock): (x, v, state)."""
     dt = pr.dt
     if sl.stop - sl.start < 2:
         n = max(sl.stop - sl.start, 0)
@@ -176,7 +194,7 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta, dg,
                                             p.age_a, max(p.age_tau, 1e-3 * dt), p.age_r, max(p.age_v, 1e-12),
                                             p.load_kx, p.load_xref, p.creep0, p.creep1,
-                                            float(start))
+                                            float(start), max(float(t_stick), 0.0))
     if status != st.OK:
         raise LiengInputError(f"the slider simulation failed ({st.name(status)}): check --fn and the record's units")
     if p.trig_ax:

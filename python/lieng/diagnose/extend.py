@@ -233,6 +233,13 @@ class Judge:
             first, j0 = first[keep][:self.MAX_CYCLES], j0[keep][:self.MAX_CYCLES]
             i0, tgt = np.r_[i0, j0].astype(int), np.r_[tgt, first].astype(int)
             self.start += [float(pr.x[a]) for a in j0]
+        # how long the contact has rested at each prediction's start (the ageing's clock): 0 at a trough,
+        # just arrested; at a stroke's start, since the record's last arrest before it (through the reversal
+        # and its dwell, as :func:`.evidence.stick_times` counts that stick)
+        self.rest = np.zeros(i0.size)
+        for row in range(k.size, i0.size):
+            before = c.trough_i[c.trough_i < i0[row]]
+            self.rest[row] = float(pr.t[i0[row]] - pr.t[before[-1]]) if before.size else 0.0
         self._k = k
         span = c.trough_i[tgt] - i0
         self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, tgt)]
@@ -277,7 +284,7 @@ class Judge:
         starts = self.start if not p.drv_a else \
             [stick_start(pr, self.c, int(j), p) for j in self._k] + self.start[self._k.size:]
         for row, sl in enumerate(self.slices):
-            xs, _, state = run_slice(pr, p, self.fn, sl, starts[row], self.ylow)
+            xs, _, state = run_slice(pr, p, self.fn, sl, starts[row], self.ylow, t_stick=self.rest[row])
             slip = np.flatnonzero(state == 0)
             if slip.size == 0:
                 pred[row] = ((t[sl.stop - 1] - t[sl.start]) / self.scale[row], xs[-1] / self.D, xs[-1] / self.D)
