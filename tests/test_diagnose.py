@@ -1484,3 +1484,32 @@ def test_an_ageing_limit_keeps_its_clock_across_a_reversal():
     assert stuck_for(t, np.array([1, 1, 1, 1, 1, 1]), 2.0) == 7.0
     assert stuck_for(t, np.array([1, 0, 0, 1, 1, 1]), 2.0) == 2.0
     assert stuck_for(t, np.array([1, 1, 1, 1, 1, 0]), 2.0) == 0.0
+
+
+def test_a_fold_that_cannot_form_the_extension_holds_nothing_out_for_it(monkeypatch):
+    """The gain is judged on the folds whose training part formed the
+    extension: a fold with too few sticks to read an ageing law on (no
+    candidate at all) is left out, not counted as an extension that gains
+    nothing; a fold that formed one no better than the baseline stays in."""
+    import lieng.diagnose as dg
+
+    rec = synthesize("static_ageing", 1)
+    real = dg._extend
+    calls = []
+
+    def one_fold(formed_on):
+        def ext(k, base, train, pr, c, fn, st, aux, win, trough):
+            res = real(k, base, train, pr, c, fn, st, aux, win, trough)
+            i = len(calls)
+            calls.append(win)
+            return res if i % 2 in formed_on else (base, res[2], res[2], [])
+        return ext
+
+    d_all = run(rec)
+    e_all = {e["effect"]: e for e in d_all.effects + d_all.detected}["static_ageing"]
+    monkeypatch.setattr(dg, "_extend", one_fold({0}))
+    d_first = run(rec)
+    e_first = {e["effect"]: e for e in d_first.effects + d_first.detected}["static_ageing"]
+    assert len(calls) == 2
+    # the first fold alone: its own held-out errors, not diluted by a fold where the extension is the baseline
+    assert e_first["gain"] > 0.3 and e_first["held_out_error_baseline"] != e_all["held_out_error_baseline"]

@@ -467,11 +467,17 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         # the extension starts from the effect's size over the baseline's replicates (the statistic less
         # what the baseline itself gives), not from the raw statistic
         stk = {**st, k: rows[k]["effect_size"], k + "_raw": st[k]}
-        fits, first = [], None
+        fits, first, formed = [], None, []
         for (b, train, win, trough), part in zip(fold_models, parts):
             res = _extend(k, b, train, pr, c, fn_used, stk, aux_ext, win, trough)
             fits.append((part[2], part[3], b, res[0]))
+            formed.append(bool(res[3]))
             first = first or res
+        # a fold whose training part cannot form the extension at all (too few sticks to read an ageing
+        # law on) holds nothing out for it: the gain is judged on the folds that formed one (an extension
+        # formed but no better than the baseline on its training part stays in, as the baseline itself)
+        if any(formed) and not all(formed):
+            fits = [f for f, ok in zip(fits, formed) if ok]
         # the first fold's extension is the one reported (fitted on the record's first 70 %)
         ext, e_tr, e_train0, cands = first
         g = gain_folds(pr, c, fn_used, fits, aux_ext["ylow"])

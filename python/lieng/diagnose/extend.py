@@ -39,7 +39,11 @@ the model of
   regression of y on x and x'), over y's spread.
 
 gain = 1 - e_extended / e_baseline (:func:`gain_folds`), with a 90 % interval from resampling the
-held-out cycles; always finite.
+held-out cycles; always finite.  A fold whose training part cannot form the
+extension at all (too few sticks to read an ageing law on) holds nothing
+out for it and is left out; one that formed an extension no better than
+the baseline on its training part stays in, with the baseline as its
+extension.
 """
 
 from __future__ import annotations
@@ -59,7 +63,8 @@ __all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_fol
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles (the record's last 30 % with models fitted on its "
-          "first 70 %, and its first 30 % with models fitted on its last 70 %), one cycle ahead from the record's own state (from "
+          "first 70 %, and its first 30 % with models fitted on its last 70 %; a fold whose training part cannot form "
+          "the extension is left out), one cycle ahead from the record's own state (from "
           "each trough): stick time to the next slip's halfway crossing (/ mean period), peak and trough (/ drop D); "
           "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing, those "
           "within the record's slips (from peak to arrest) (/ D); "
