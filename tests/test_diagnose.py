@@ -1513,3 +1513,39 @@ def test_a_fold_that_cannot_form_the_extension_holds_nothing_out_for_it(monkeypa
     assert len(calls) == 2
     # the first fold alone: its own held-out errors, not diluted by a fold where the extension is the baseline
     assert e_first["gain"] > 0.3 and e_first["held_out_error_baseline"] != e_all["held_out_error_baseline"]
+
+
+def test_a_slow_drive_level_beside_a_fast_one_is_a_stroke_and_a_dwell_is_not():
+    """A stretch of drive below 5 % of the fast level is a dwell only when it
+    stands still: a slow level that moves one way throughout (0.5 mm/s
+    beside 20 mm/s, with the scatter of a differentiated position) is part
+    of the stroke, a still stage (zero with that scatter) is not."""
+    from lieng.diagnose.segment import strokes
+
+    g = np.random.default_rng(0)
+    vd = np.r_[np.full(3000, 0.5), np.full(3000, 20.0)] + 0.05 * g.standard_normal(6000)
+    st = strokes(vd)
+    assert [(s.i0, s.i1, s.sign) for s in st] == [(0, 6000, 1)]
+    vd = np.r_[np.full(3000, 20.0), np.zeros(1000), np.full(3000, -20.0)] + 0.05 * g.standard_normal(7000)
+    st = strokes(vd)
+    assert [(s.sign, s.n) for s in st] == [(1, 3000), (-1, 3000)]
+
+
+def test_a_record_that_stops_stick_slipping_is_analysed_where_it_stick_slips():
+    """A Coulomb slider (plain NumPy) that stick-slips for 12 s and then
+    slides steadily for 12 s (a lubricant came in): the steady part, with
+    no cycle to predict, is left out and said; the stick-slip part is the
+    effect-free slider it is.  A record that stick-slips throughout is not
+    cut."""
+    from lieng.diagnose.segment import find_cycles, prepare, stick_slip_span
+
+    t, x, _ = _forced_coulomb(0.0)
+    g = np.random.default_rng(1)
+    steady = 0.5 + 0.002 * g.standard_normal(t.size)
+    tt = np.r_[t, t[-1] + t[1] + t]
+    d = diagnose(record_from_arrays(tt, np.r_[x, steady], 2.0), 10.0)
+    assert d.effect == "none"
+    said = [n for n in d.notes if n.startswith("no stick-slip in ")]
+    assert len(said) == 1 and "drive 2 mm/s" in said[0]
+    pr = prepare(record_from_arrays(t, x, 2.0))
+    assert stick_slip_span(pr, find_cycles(pr, 10.0)) is None

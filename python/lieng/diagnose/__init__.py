@@ -28,8 +28,8 @@ from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import lowpass, y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
-from lieng.diagnose.segment import (estimate_fn, find_cycles, head, prepare, reversal_ramp, slip_seconds,
-                                    stick_ratios)
+from lieng.diagnose.segment import (crop, estimate_fn, find_cycles, head, prepare, reversal_ramp, slip_seconds,
+                                    stick_ratios, stick_slip_span)
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -298,6 +298,14 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             warnings.append(f"the slips last {dur:.3g} s, {dur * fn:.2g} of a natural period at --fn {fn:g} Hz: a "
                             f"slip lasts about half a period (fn about {0.5 / dur:.3g} Hz): check --fn (Hz)")
     c0 = find_cycles(pr, fn)
+    span = stick_slip_span(pr, c0)
+    if span is not None:
+        # the baseline is fitted where the record stick-slips: a steady stretch before or after it (the drive
+        # changed, a lubricant came in) has no cycle to predict, and its replicates would stick-slip there
+        pr = crop(pr, span[0], span[1])
+        c0 = find_cycles(pr, fn)
+        notes.append(f"no stick-slip in {span[2]}: the record is analysed from {pr.t[0]:.4g} to {pr.t[-1]:.4g} s, "
+                     f"where it stick-slips")
     fd, fse, nsl = estimate_fn(pr, c0, fn) if c0.n >= 3 else (None, None, 0)
     if fd is not None and not (fd * pr.dt < 0.2):
         fd = None

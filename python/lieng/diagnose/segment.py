@@ -103,20 +103,62 @@ class Prepared:
         return [slice(s.j0, s.j0 + s.n) for s in self.strokes]
 
 
-def head(p: Prepared, nmax: int) -> Prepared:
-    """The prepared record's first ``nmax`` samples (whole strokes, the last
-    one cut): a part long enough for a global estimate at a fixed cost."""
-    if p.t.size <= nmax:
+def crop(p: Prepared, a: int, b: int) -> Prepared:
+    """The prepared record's samples [a, b) (the strokes cut there)."""
+    a, b = max(int(a), 0), min(int(b), p.t.size)
+    if a == 0 and b == p.t.size:
         return p
     strokes = []
     for s in p.strokes:
-        if s.j0 >= nmax:
-            break
-        n = min(s.n, nmax - s.j0)
-        strokes.append(Stroke(i0=s.i0, i1=s.i0 + n, sign=s.sign, j0=s.j0))
-    m = strokes[-1].j0 + strokes[-1].n
-    return Prepared(t=p.t[:m], x=p.x[:m], vd=p.vd[:m], y=None if p.y is None else p.y[:m], strokes=strokes,
-                    dt=p.dt, flipped=p.flipped, notes=[], pos=None if p.pos is None else p.pos[:m])
+        lo, hi = max(a, s.j0), min(b, s.j0 + s.n)
+        if hi > lo:
+            i0 = s.i0 + (lo - s.j0)
+            strokes.append(Stroke(i0=i0, i1=i0 + (hi - lo), sign=s.sign, j0=lo - a))
+    return Prepared(t=p.t[a:b], x=p.x[a:b], vd=p.vd[a:b], y=None if p.y is None else p.y[a:b], strokes=strokes,
+                    dt=p.dt, flipped=p.flipped, notes=[], pos=None if p.pos is None else p.pos[a:b])
+
+
+def head(p: Prepared, nmax: int) -> Prepared:
+    """The prepared record's first ``nmax`` samples (whole strokes, the last
+    one cut): a part long enough for a global estimate at a fixed cost."""
+    return p if p.t.size <= nmax else crop(p, 0, nmax)
+
+
+#: a record that slides steadily before or after its stick-slip, over more than
+#: this share of it, is analysed where it stick-slips
+STEADY_SHARE = 0.2
+#: ... and over at least this many of its stick-slip periods
+STEADY_PERIODS = 10
+
+
+def stick_slip_span(p: Prepared, c: Cycles):
+    """Where the record stick-slips when it slides steadily before or after
+    (the drive changed, a lubricant came in): (a, b, what was left out, in
+    words) with a margin of two periods, or None when the cycles span it
+    (the part outside under STEADY_SHARE of the record or STEADY_PERIODS
+    periods)."""
+    if c.n < 4:
+        return None
+    per = c.periods(p.t)
+    P = float(np.median(per)) if per.size else float(np.median(p.t[c.trough_i] - p.t[c.peak_i])) * 4
+    m = int(round(2 * P / p.dt))
+    # the longest run of cycles no further apart than STEADY_PERIODS periods of moving drive (the samples:
+    # dwells are cut out of the prepared record); a lone drop outside it (a start-up) is no stick-slip
+    cut = np.flatnonzero(np.diff(c.peak_i) * p.dt > STEADY_PERIODS * P)
+    runs = np.split(np.arange(c.n), cut + 1)
+    run = max(runs, key=len)
+    a, b = max(int(c.peak_i[run[0]]) - m, 0), min(int(c.trough_i[run[-1]]) + m + 1, p.t.size)
+    n = p.t.size
+    parts = [(0, a), (b, n)]
+    parts = [(i, j) for i, j in parts if j - i > 0 and (p.t[j - 1] - p.t[i]) >= STEADY_PERIODS * P]
+    if not parts or sum(j - i for i, j in parts) < STEADY_SHARE * n:
+        return None
+    a = a if any(i == 0 for i, _ in parts) else 0
+    b = b if any(j == n for _, j in parts) else n
+    said = "; ".join(f"{p.t[i]:.4g} to {p.t[j - 1]:.4g} s (x at {np.median(p.x[i:j]):.4g} +- "
+                     f"{np.std(p.x[i:j]):.2g} mm, drive {np.median(np.abs(p.vd[i:j])):.4g} mm/s)"
+                     for i, j in parts if (i == 0 and a > 0) or (j == n and b < n))
+    return a, b, said
 
 
 def smooth(x, dt, fn, deriv=0, win=None):
@@ -168,6 +210,15 @@ def strokes(vd, min_samples: int = 20) -> list:
     a = np.abs(vd)
     moving = a > 0.05 * float(np.percentile(a[a > 0], 90)) if np.any(a > 0) else a > 0
     sgn = np.where(moving, np.sign(vd), 0).astype(int)
+    # a stretch below that is a dwell only when it stands still: one that moves one way throughout, clear of
+    # its own scatter (a slow drive level beside a fast one, 0.5 and 20 mm/s), is a stroke of its own
+    for i0, i1 in zip(*_runs(sgn == 0)):
+        v = np.asarray(vd[i0:i1], float)
+        if v.size < min_samples:
+            continue
+        d = float(np.sign(np.median(v)))
+        if d and np.mean(np.sign(v) == d) >= 0.95 and abs(float(np.mean(v))) > 3.0 * float(np.std(v)):
+            sgn[i0:i1] = int(d)
     s0, s1 = _runs(sgn != 0)
     out = []
     for i0, i1 in zip(s0, s1):
