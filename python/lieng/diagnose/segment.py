@@ -129,6 +129,8 @@ def head(p: Prepared, nmax: int) -> Prepared:
 STEADY_SHARE = 0.2
 #: ... and over at least this many of its stick-slip periods
 STEADY_PERIODS = 10
+#: ... with x within this share of the drop about its level (its standard deviation)
+STEADY_SPREAD = 0.1
 
 
 def stick_slip_span(p: Prepared, c: Cycles):
@@ -149,8 +151,12 @@ def stick_slip_span(p: Prepared, c: Cycles):
     run = max(runs, key=len)
     a, b = max(int(c.peak_i[run[0]]) - m, 0), min(int(c.trough_i[run[-1]]) + m + 1, p.t.size)
     n = p.t.size
-    parts = [(0, a), (b, n)]
-    parts = [(i, j) for i, j in parts if j - i > 0 and (p.t[j - 1] - p.t[i]) >= STEADY_PERIODS * P]
+    D = c.amplitude(p.x)
+    vmove = 0.05 * float(np.percentile(np.abs(p.vd), 90))
+    # steady: the drive moves and x holds its level (within STEADY_SPREAD of the drop: no stick-slip the
+    # cycle finder missed, no hold)
+    parts = [(i, j) for i, j in ((0, a), (b, n)) if j - i > 1 and (j - i) * p.dt >= STEADY_PERIODS * P
+             and np.median(np.abs(p.vd[i:j])) > vmove and np.std(p.x[i:j]) < STEADY_SPREAD * D]
     if not parts or sum(j - i for i, j in parts) < STEADY_SHARE * n:
         return None
     a = a if any(i == 0 for i, _ in parts) else 0
