@@ -670,6 +670,17 @@ def _hum_lines(x, dt):
     found = []
     nyq = 0.5 / dt
     tt = np.arange(n) * dt
+    # the record's own periodicity (the strongest line below 45 Hz: the stick-slip, a reciprocating stroke),
+    # refined within its bin; a mains line at one of its first 20 harmonics (within half a bin and 2 % of a
+    # bin per harmonic), no stronger than a sawtooth's harmonic would be (2 A1 / h) and with the series
+    # beside it, is the record's own
+    k1 = 2 + int(np.argmax(S[2:max(int(45.0 * T), 3)])) if int(45.0 * T) > 3 else 0
+    f1 = a1 = 0.0
+    if 2 < k1 < S.size - 1:
+        y0, y1, y2 = np.log(S[k1 - 1:k1 + 2] + 1e-300)
+        den = y0 - 2 * y1 + y2
+        f1 = (k1 + (0.5 * (y0 - y2) / den if den < 0 else 0.0)) / T
+        a1 = float(S[k1])
     for base in (50.0, 60.0):
         for h in (1, 2, 3):
             fh = base * h
@@ -697,7 +708,15 @@ def _hum_lines(x, dt):
                     b = 2 * float(np.dot(s, sn)) / n
                     if best is None or a * a + b * b > best[1] ** 2:
                         best = (ff, math.hypot(a, b), a, b)
-                if abs(best[0] - fh) <= 0.004 * fh + 0.5 / T:     # the line is at the mains frequency
+                hh = round(best[0] / f1) if f1 > 0 else 0
+                own = 2 <= hh <= 20 and abs(best[0] - hh * f1) <= (0.5 + 0.02 * hh) / T and peak <= 2.0 * a1 / hh
+                if own:
+                    # a harmonic comes with its series: a line at h +- 1 or h +- 2 (a square wave's odd ones) at
+                    # least a third of this one; hum on a harmonic stands out of it
+                    near = [float(np.max(S[max(int(round(j * f1 * T)) - 1, 1):int(round(j * f1 * T)) + 2]))
+                            for j in (hh - 2, hh - 1, hh + 1, hh + 2) if j >= 1 and round(j * f1 * T) + 2 < S.size]
+                    own = bool(near) and max(near) >= peak / 3.0
+                if abs(best[0] - fh) <= 0.004 * fh + 0.5 / T and not own:     # the line is at the mains frequency
                     found.append(best)
     return found
 

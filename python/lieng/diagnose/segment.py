@@ -407,6 +407,9 @@ def _light(x, dt, fn, win: int, noise: float):
     return (xl if w == win else smooth(x, dt, 1.0, 0, win=w)), noise * _sg_gain(w)
 
 
+_RAMP = True
+
+
 def find_cycles(p: Prepared, fn: float | None, speeds: bool = True) -> Cycles:
     """The stick-slip cycles of every stroke (see the module docstring);
     with ``speeds=False`` the peaks and troughs alone (``v`` and ``a`` are
@@ -434,10 +437,16 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True) -> Cycles:
         elif speeds:
             vs.append(smooth(xr, dt, 1.0, 1, win=7))
             acc.append(smooth(xr, dt, 1.0, 2, win=7))
-        span = float(np.subtract(*np.percentile(xl, [98, 2])))
+        # the swing's scale, less a reversal's reload at the stroke's start (x climbing from the other side to
+        # its level: a ramp as tall as two static limits, which no slip is)
+        head_end = int(np.argmax(xl >= np.median(xl))) if _RAMP else 0
+        body = xl[head_end:] if 2 * (xl.size - head_end) >= xl.size else xl
+        span = float(np.subtract(*np.percentile(body, [98, 2])))
         if not span > 1e-9 * float(np.max(np.abs(xl))):
             continue                      # a flat stroke (within rounding): no cycle in it
-        h0 = max(0.25 * span, 8 * noise)
+        # (and at least a twentieth of the whole stroke's, reload included: a steady stroke's wiggles are no
+        # stick-slip)
+        h0 = max(0.25 * span, 8 * noise, 0.05 * float(np.subtract(*np.percentile(xl, [98, 2]))))
         ix, kd = _zigzag_fast(xl, h0)
         if ix.size >= 4:
             sw = np.abs(np.diff(xl[ix]))
