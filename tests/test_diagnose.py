@@ -141,6 +141,10 @@ def test_records_without_stick_slip_are_reported_not_refused(tmp_path):
         assert main(["diagnose", str(f), *args, "--fn", "10", "-o", str(out), "-q"]) == 0
         d = json.loads((out / "diagnosis.json").read_text())
         assert d["effect"] == "no_stick_slip" and "cycles" in d["reason"]
+        assert d["drop_mm"] is None                 # no drop to read: null, not 0
+    out = tmp_path / "flat_nofn"
+    assert main(["diagnose", str(flat), "--v0", "1", "-o", str(out), "-q"]) == 0
+    assert json.loads((out / "diagnosis.json").read_text())["natural_frequency_hz"]["used"] is None
 
 
 def test_a_thesis_style_trc_deck_is_accepted(tmp_path, capsys):
@@ -1318,7 +1322,7 @@ def _lab_rows(n=400, rate=1000.0):
 
 
 @pytest.mark.parametrize("kind", ["savetxt", "repeated_header", "footer", "cp1252", "utf16", "gf", "minus",
-                                  "quoted_decimal_comma", "restart"])
+                                  "quoted_decimal_comma", "restart", "excel_sep", "labview", "french"])
 def test_exports_as_lab_software_writes_them(tmp_path, kind):
     """Table exports a black-box audit found refused (stop 40): read, and
     what was done said in a note.  The numbers read are the file's own."""
@@ -1348,6 +1352,13 @@ def test_exports_as_lab_software_writes_them(tmp_path, kind):
     elif kind == "quoted_decimal_comma":
         rows = ['"' + '","'.join(f"{v:.6f}".replace(".", ",") for v in r) + '"' for r in zip(t, F, N)]
         text = "\n".join(['"t [s]","F [N]","N [N]"'] + rows)
+    elif kind == "excel_sep":              # Excel's separator hint above the header (stop 42's audit)
+        text = "\n".join(["sep=;", "t [s];F [N];N [N]"] + [r.replace(",", ";") for r in rows])
+    elif kind == "labview":                # a LabVIEW .lvm's time column
+        text = "\n".join(["X_Value\tFriction force\tNormal force"] + [r.replace(",", "\t") for r in rows])
+    elif kind == "french":                 # French column names, accents and all, in Latin-1
+        text, enc = "\n".join(["Temps (s);Force tangentielle (N);Force normale (N)"] +
+                               [r.replace(",", ";") for r in rows]), "latin-1"
     else:                                  # a second run appended: the clock starts again; the longer is read
         text, note = "\n".join([head] + rows[:150] + rows), "starts again"
     p = tmp_path / "export.csv"

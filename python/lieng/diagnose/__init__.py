@@ -119,10 +119,11 @@ class Diagnosis:
              "calibration": {"method": "parametric bootstrap of the fitted baseline (fn drawn within its "
                                        "uncertainty, noise at the record's level); Holm over the candidates",
                              "family_wise_alpha": ALPHA, "replicates": self.n_replicates},
-             "natural_frequency_hz": {"used": self.fn, "source": self.fn_source,
+             # (null where nothing fixed them: no stick-slip, no natural frequency or drop to read)
+             "natural_frequency_hz": {"used": self.fn if self.fn > 0 else None, "source": self.fn_source,
                                       "relative_uncertainty": self.fn_uncertainty, "from_slips": self.fn_data,
                                       "from_slips_se": self.fn_data_se},
-             "cycles": self.n_cycles, "drop_mm": self.drop,
+             "cycles": self.n_cycles, "drop_mm": self.drop if self.drop > 0 else None,
              "fitted": {"baseline": self.baseline.to_json() if self.baseline else None,
                         "extended": self.extended.to_json() if self.extended else None},
              "units": {"x": "mm", "t": "s", "velocity": "mm/s", "frequency": "Hz",

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 import re
+import unicodedata
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -44,7 +45,7 @@ MAX_SAMPLES = 5_000_000
 MIN_SAMPLES = 50
 
 _NAMES = {
-    "t": ("t", "time", "timestamp", "datetime", "date_time", "date", "zeit", "temps"),
+    "t": ("t", "time", "timestamp", "datetime", "date_time", "date", "zeit", "temps", "x_value"),
     "x": ("x", "disp", "displacement", "extension", "spring"),
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity", "geschwindigkeit"),
@@ -141,9 +142,10 @@ def _check_v0(v0) -> None:
 
 #: words that give a column its role when its name is none of _NAMES
 #: ("Tangential force", "Normal load", "Stage position"), first match wins
-_WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load")), ("F", ("friction", "tangential", "lateral", "shear", "traction")),
-          ("position", ("position", "stage")), ("v0", ("velocity", "speed")), ("t", ("time",)),
-          ("x", ("displacement", "extension")))
+_WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load", "normale")),
+          ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement")),
+          ("position", ("position", "stage")), ("v0", ("velocity", "speed", "vitesse")), ("t", ("time", "temps")),
+          ("x", ("displacement", "extension", "deplacement")))
 
 
 #: the roles a column of a given unit's dimension can have
@@ -160,7 +162,8 @@ def _role(name: str, unit: str = ""):
     fits = {r for r, table in _FITS if u in table} if u else None
     if fits is not None and not fits:
         fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
-    words = set(re.split(r"[^a-z0-9]+", key))
+    # (the words with their accents taken off: "Déplacement", "Force normale")
+    words = set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", key).encode("ascii", "ignore").decode()))
     if {"load", "point"} <= words or "lp" in words:
         words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
     named = [role for role, alts in _NAMES.items() if key in alts] + \

@@ -307,6 +307,8 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     if text.startswith("\ufeff"):
         text = text[1:]
     rows = split_lines(text)
+    if rows and re.fullmatch(r"\s*\"?sep=.\"?\s*", rows[0], re.IGNORECASE):
+        rows[0] = ""                      # Excel's separator hint ("sep=;"): the header follows
     if len(rows) > MAX_ROWS + 1 and sum(1 for r in rows if r.strip()) > MAX_ROWS + 1:
         raise LiengInputError(f"{path}: more than {MAX_ROWS} rows: split the record (lieng reads at most "
                               f"{MAX_ROWS} rows)")
