@@ -1322,7 +1322,8 @@ def _lab_rows(n=400, rate=1000.0):
 
 
 @pytest.mark.parametrize("kind", ["savetxt", "repeated_header", "footer", "cp1252", "utf16", "gf", "minus",
-                                  "quoted_decimal_comma", "restart", "excel_sep", "labview", "french"])
+                                  "quoted_decimal_comma", "restart", "excel_sep", "labview", "french",
+                                  "excel_serial"])
 def test_exports_as_lab_software_writes_them(tmp_path, kind):
     """Table exports a black-box audit found refused (stop 40): read, and
     what was done said in a note.  The numbers read are the file's own."""
@@ -1359,6 +1360,9 @@ def test_exports_as_lab_software_writes_them(tmp_path, kind):
     elif kind == "french":                 # French column names, accents and all, in Latin-1
         text, enc = "\n".join(["Temps (s);Force tangentielle (N);Force normale (N)"] +
                                [r.replace(",", ";") for r in rows]), "latin-1"
+    elif kind == "excel_serial":           # a spreadsheet's serial dates (days) in a Date column
+        rows = [f"{45363.5 + a / 86400:.12f},{b:.6f},{c:.3f}" for a, b, c in zip(t, F, N)]
+        text, note = "\n".join(["Date,F [N],N [N]"] + rows), "serial dates"
     else:                                  # a second run appended: the clock starts again; the longer is read
         text, note = "\n".join([head] + rows[:150] + rows), "starts again"
     p = tmp_path / "export.csv"

@@ -57,6 +57,8 @@ _NAMES = {
           "sigma_n", "normal_stress"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg"),
 }
+#: time column names whose plain numbers between 20000 and 80000 are a spreadsheet's serial dates (days)
+EXCEL_DAY_NAMES = ("date", "datetime", "date_time", "date/time", "timestamp", "time stamp", "date time")
 _LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6}
 _VELOCITY = {"": 1.0, "mm/s": 1.0, "um/s": 1e-3, "µm/s": 1e-3, "m/s": 1e3, "cm/s": 10.0, "mm/min": 1 / 60}
 _TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0, "h": 3600.0, "hr": 3600.0}
@@ -325,10 +327,19 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if n > MAX_SAMPLES:
         _fail(f"{path}: {n} samples: more than the {MAX_SAMPLES} this command reads; cut the record")
     dated = "t" in cols and cols["t"][0] in tab.dates
+    serial_note = None
     if dated:
         t = cols["t"][1]                  # date-times: seconds from the first row's
     elif "t" in cols:
         t = cols["t"][1] * _scale(path, cols["t"][0], units["t"], _TIME, "time")
+        tv = cols["t"][1]
+        if not units["t"] and _role(cols["t"][0]) == "t" and cols["t"][0].strip().lower() in EXCEL_DAY_NAMES \
+                and np.all((tv > 20000.0) & (tv < 80000.0)) and float(np.ptp(tv)) < 30.0:
+            # a spreadsheet's serial date (days since 1899-12-30: 45363.43 is 2024-03-11 10:19): days, read as
+            # seconds from the first row's
+            t = (tv - tv[0]) * 86400.0
+            serial_note = (f"{cols['t'][0]}: spreadsheet serial dates (days since 1899-12-30), read as seconds from "
+                           f"the first row's")
     else:
         t = np.arange(n) / float(rate)
     d = np.diff(t)
@@ -362,7 +373,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (mu_note, drive_note, runs_note, stamps_note) if m]
+    notes = [m for m in (mu_note, drive_note, serial_note, runs_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
