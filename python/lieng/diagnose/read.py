@@ -333,7 +333,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     elif "t" in cols:
         t = cols["t"][1] * _scale(path, cols["t"][0], units["t"], _TIME, "time")
         tv = cols["t"][1]
-        if not units["t"] and _role(cols["t"][0]) == "t" and cols["t"][0].strip().lower() in EXCEL_DAY_NAMES \
+        if not units["t"] and cols["t"][0].strip().lower() in EXCEL_DAY_NAMES \
                 and np.all((tv > 20000.0) & (tv < 80000.0)) and float(np.ptp(tv)) < 30.0:
             # a spreadsheet's serial date (days since 1899-12-30: 45363.43 is 2024-03-11 10:19): days, read as
             # seconds from the first row's

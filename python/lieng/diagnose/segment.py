@@ -136,9 +136,11 @@ STEADY_SPREAD = 0.1
 def stick_slip_span(p: Prepared, c: Cycles):
     """Where the record stick-slips when it slides steadily before or after
     (the drive changed, a lubricant came in): (a, b, what was left out, in
-    words) with a margin of two periods, or None when the cycles span it
-    (the part outside under STEADY_SHARE of the record or STEADY_PERIODS
-    periods)."""
+    words) with a margin of two periods, or None when the cycles span it.
+    A part left out lies before or after the longest run of cycles, spans
+    STEADY_SHARE of the record and STEADY_PERIODS periods at least, and is
+    steady: the drive moves (above a twentieth of its fast level) and x
+    holds its level within STEADY_SPREAD of the drop."""
     if c.n < 4:
         return None
     per = c.periods(p.t)
