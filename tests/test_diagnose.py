@@ -1589,3 +1589,29 @@ def test_a_mains_frequency_that_is_a_harmonic_of_the_record_is_its_own():
     saw = 2 * ((t * 11.3) % 1.0) - 1.0
     lines = _hum_lines(saw + 0.06 * np.sin(2 * np.pi * 60.0 * t + 0.3), dt)
     assert len(lines) == 1 and abs(lines[0][0] - 60.0) < 0.05
+
+
+def test_the_strokes_own_pattern_of_sticks_is_no_drive_modulation():
+    """On a reciprocating record the sticks repeat their pattern in every
+    stroke (the first after a reversal reloads the spring from the other
+    side): the drive test reads the stick series less its mean at each place
+    in the stroke, so the pattern, periodic at the stroke's frequency, is
+    gone and a modulation of the drive across the strokes is kept."""
+    from types import SimpleNamespace
+
+    from lieng.diagnose.evidence import _less_stroke_pattern
+
+    nst, per = 12, 10
+    stroke = np.repeat(np.arange(nst), per)
+    k = np.arange(stroke.size)
+    c = SimpleNamespace(stroke=stroke)
+    pattern = np.tile(np.linspace(0.2, 0.0, per), nst)            # each stroke's own course
+    drive = 0.05 * np.sin(2 * np.pi * np.arange(stroke.size) / 37.0)   # across the strokes
+    r = 1.0 + pattern + drive
+    out = _less_stroke_pattern(r, k, c)
+    place = k % per
+    means = [float(np.mean(out[place == q])) for q in range(per)]
+    assert np.ptp(means) < 0.02                                    # the pattern is gone (0.2 before)
+    assert np.corrcoef(out, drive)[0, 1] > 0.95                    # the drive's modulation is kept
+    few = SimpleNamespace(stroke=np.repeat(np.arange(3), per))     # three strokes: left as it is
+    assert np.array_equal(_less_stroke_pattern(r[:30], k[:30], few), r[:30])

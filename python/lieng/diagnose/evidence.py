@@ -495,7 +495,8 @@ def _stick_series(pr: Prepared, c: Cycles):
 
 
 def _drive(pr: Prepared, c: Cycles, fn: float, nperm: int = 199):
-    t, r = _stick_series(pr, c)
+    t, r, k = stick_ratios(pr, c, lines_only=True, index=True)
+    r = _less_stroke_pattern(r, k, c)
     per = c.periods(pr.t)
     if r.size < 8 or per.size < 2:
         return 0.0, math.inf, None, 0.0
@@ -504,6 +505,26 @@ def _drive(pr: Prepared, c: Cycles, fn: float, nperm: int = 199):
     # from two cycles of the modulation in the record to half the stick rate (Nyquist of the stick sampling)
     frac, f, amp, p = drive_scan(t, r, max(2.0 / span, 0.02 * f_ss), 0.5 * f_ss, nperm=nperm)
     return amp, 0.0, p, f
+
+
+def _less_stroke_pattern(r, k, c: Cycles):
+    """The stick series less its mean at each place in the stroke (the
+    first stick after a reversal, the second, ...) on a reciprocating record
+    of four strokes or more (a place that holds fewer than three sticks is
+    left as it is): the strokes repeat their own pattern at the stroke's frequency, which no
+    modulation of the drive within the strokes makes and which a
+    permutation of the sticks would take for one."""
+    strokes = c.stroke[k] if k.size else k
+    if k.size == 0 or np.unique(strokes).size < 4:
+        return r
+    first = {s: int(np.flatnonzero(c.stroke == s)[0]) for s in np.unique(strokes)}     # the stroke's first cycle
+    place = np.array([kk - first[s] for kk, s in zip(k, strokes)])
+    out = np.asarray(r, float).copy()
+    for q in np.unique(place):
+        m = place == q
+        if np.count_nonzero(m) >= 3:          # (a place few strokes reach is left as it is)
+            out[m] -= np.mean(out[m]) - np.mean(r)
+    return out
 
 
 def _creep(pr: Prepared, c: Cycles):
