@@ -242,9 +242,8 @@ class Judge:
         # just arrested; at a stroke's start, since the record's last arrest before it (through the reversal
         # and its dwell, as :func:`.evidence.stick_times` counts that stick)
         self.rest = np.zeros(i0.size)
-        for row in range(k.size, i0.size):
-            before = c.trough_i[c.trough_i < i0[row]]
-            self.rest[row] = float(pr.t[i0[row]] - pr.t[before[-1]]) if before.size else 0.0
+        last = np.searchsorted(c.trough_i, i0[k.size:]) - 1          # (the troughs are in time order)
+        self.rest[k.size:] = np.where(last >= 0, pr.t[i0[k.size:]] - pr.t[c.trough_i[np.maximum(last, 0)]], 0.0)
         self._k = k
         span = c.trough_i[tgt] - i0
         self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, tgt)]
