@@ -246,25 +246,32 @@ QUANT_STEPS = 8
 def _drive_from_position(pos, dt, notes):
     """The drive velocity (mm/s) from a position column (mm): its smoothed
     derivative over 0.02 s, or, where the position is quantised more
-    coarsely than it moves in a sample (its smallest step larger than its
-    typical travel per sample while it moves), over QUANT_STEPS of its
-    steps (at most a twentieth of the record)."""
+    coarsely, or is noisier, than it moves in a sample (its smallest step,
+    or its white noise, larger than its typical travel per sample while it
+    moves), over QUANT_STEPS of those steps (at most a twentieth of the
+    record): a derivative over 0.02 s of an LVDT noisier than its travel
+    there changes sign sample by sample and cuts a one-way drive into
+    hundreds of "strokes"."""
     win = 0.02 / dt
     d = np.abs(np.diff(pos))
     nz = d[d > 0]
     m = 200
     if nz.size >= 10 and pos.size >= 4 * m:
         q = float(np.percentile(nz, 5))
+        noise = noise_level(pos)
         travel = np.abs(pos[m::m] - pos[:-m:m]) / m
         travel = travel[travel > 0]
         per_sample = float(np.median(travel)) if travel.size else 0.0
-        if 0 < per_sample < q:
-            w = min(QUANT_STEPS * q / per_sample, pos.size / 20)
+        what, step = (("noise", noise) if noise > q else ("steps", q))
+        if 0 < per_sample < step:
+            w = min(QUANT_STEPS * step / per_sample, pos.size / 20)
             if w > win:
                 win = w
-                notes.append(f"the position column moves in steps of {q:.3g} mm, more than it travels in a sample "
-                             f"({per_sample:.3g} mm): the drive velocity is its derivative over {win * dt:.3g} s "
-                             f"({QUANT_STEPS} steps)")
+                notes.append((f"the position column moves in steps of {q:.3g} mm, more than it travels in a sample "
+                              if what == "steps" else
+                              f"the position column's noise ({noise:.3g} mm) is more than it travels in a sample ")
+                             + f"({per_sample:.3g} mm): the drive velocity is its derivative over {win * dt:.3g} s "
+                               f"({QUANT_STEPS} {'steps' if what == 'steps' else 'times the noise'})")
     return _smooth_derivative(pos, dt, win)
 
 
