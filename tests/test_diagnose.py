@@ -1636,3 +1636,19 @@ def test_the_strokes_own_pattern_of_sticks_is_no_drive_modulation():
     assert np.corrcoef(out, drive)[0, 1] > 0.95                    # the drive's modulation is kept
     few = SimpleNamespace(stroke=np.repeat(np.arange(3), per))     # three strokes: left as it is
     assert np.array_equal(_less_stroke_pattern(r[:30], k[:30], few), r[:30])
+
+
+def test_the_slips_smoothing_is_scipys_savgol_filter():
+    """The reverse construction's cubic Savitzky-Golay (value, x', x'' at
+    once, kernels computed once per window) is scipy's
+    ``savgol_filter(mode="interp")``, edges included, to rounding."""
+    from scipy.signal import savgol_filter
+
+    from lieng.diagnose.segment import savgol3
+
+    g = np.random.default_rng(5)
+    for w, n in ((7, 7), (9, 40), (21, 100), (65, 300)):
+        x = np.cumsum(g.standard_normal(n))
+        for d, y in enumerate(savgol3(x, w, 1e-3)):
+            ref = savgol_filter(x, w, 3, deriv=d, delta=1e-3, mode="interp")
+            assert np.allclose(y, ref, rtol=1e-9, atol=1e-9 * np.max(np.abs(ref)))

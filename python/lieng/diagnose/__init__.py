@@ -21,7 +21,8 @@ from lieng.errors import LiengInputError
 from lieng.io.outputs import finite_json as _finite
 from lieng.diagnose.baseline import (CALIBRATION_SAMPLES, Params, calibrate_fn, fit_baseline, pr_like,
                                      slip_friction)
-from lieng.diagnose.decide import ALPHA, RIVALS, decide, fn_needed, misfit, null_replicates, rivals
+from lieng.diagnose.decide import (ALPHA, REPLICATE_BUDGET, RIVALS, decide, fn_needed, misfit, null_replicates,
+                                   rivals)
 from lieng.diagnose.evidence import (CANDIDATES, MARGIN, ONE_SIDED, SLIDING, fn_readings, sliding_statistics,
                                      statistics)
 from lieng.diagnose.goodness import RIG
@@ -237,7 +238,7 @@ def _plot_data(pr, c, fn, g0, tsplit) -> dict:
 
 
 def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN_UNCERTAINTY,
-             replicates: int = 39, budget: float = 25.0, progress=None) -> Diagnosis:
+             replicates: int = 39, budget: float = REPLICATE_BUDGET, progress=None) -> Diagnosis:
     """Diagnose a record (see the package docstring and the stage modules).
 
     Parameters

@@ -87,7 +87,13 @@ def _norm_ppf(p):
     return 0.5 * (lo + hi)
 
 
-def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int = 39, budget: float = 25.0,
+#: seconds the baseline's replicates may take (at least 8 are run): a long record's replicates are cut
+#: short so that the whole diagnosis stays within the scale limit (750 000 samples in under a minute;
+#: about 20 replicates there); a record of ordinary length runs all of them in a few seconds
+REPLICATE_BUDGET = 18.0
+
+
+def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int = 39, budget: float = REPLICATE_BUDGET,
                     seed: int = 0, progress=None, y_is_force: bool = False, arcs: bool = True, ylow=None):
     """The candidates' statistics on B baseline replicates (module docstring).
 

@@ -97,8 +97,8 @@ from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
 from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit,
                                      line_fit, lowpass, position_anova, refine_line, spectral_line, y_locked)
-from lieng.diagnose.segment import (Cycles, Prepared, creep_pairs, reversal_ramp, slip_arcs, stick_part,
-                                    stick_ratios)
+from lieng.diagnose.segment import (Cycles, Prepared, creep_pairs, reversal_ramp, savgol3, savgol3_kernels,
+                                    slip_arcs, stick_part, stick_ratios)
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "fn_readings", "lowpass"]
 
@@ -138,8 +138,6 @@ def slip_reverse_construction(pr: Prepared, c: Cycles, fn: float, k: int):
     fitted inside the slip: the kink where the stick ends is not smeared into
     the slip) and F = x + x''/wn**2 with the filter's own attenuation at fn
     divided out.  None when the slip has too few samples."""
-    from scipy.signal import savgol_coeffs, savgol_filter
-
     w = 2 * math.pi * fn
     win = max(int(round(0.25 / fn / pr.dt)) | 1, 7)
     p0, tr = int(c.peak_i[k]), int(c.trough_i[k])
@@ -157,13 +155,12 @@ def slip_reverse_construction(pr: Prepared, c: Cycles, fn: float, k: int):
     if x.size < win + 3:
         return None
     tt = (np.arange(win) - win // 2) * pr.dt
-    g0 = float(savgol_coeffs(win, 3, 0, pr.dt, use="dot") @ np.cos(w * tt))
-    g2 = -float(savgol_coeffs(win, 3, 2, pr.dt, use="dot") @ np.cos(w * tt)) / w ** 2
+    k0, _, k2 = savgol3_kernels(win, float(pr.dt))[0]
+    g0 = float(k0 @ np.cos(w * tt))
+    g2 = -float(k2 @ np.cos(w * tt)) / w ** 2
     if not g2 > 0.05:
         return None
-    xs = savgol_filter(x, win, 3, mode="interp")
-    v = savgol_filter(x, win, 3, deriv=1, delta=pr.dt, mode="interp")
-    a = savgol_filter(x, win, 3, deriv=2, delta=pr.dt, mode="interp")
+    xs, v, a = savgol3(x, win, pr.dt)
     return pr.vd[p0:e + 1] - v, xs + (g0 / g2) * a / w ** 2
 
 
@@ -490,13 +487,15 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
 
 
 def _stick_series(pr: Prepared, c: Cycles):
-    """Per stick: the time of its middle and the stick velocity over the drive."""
-    return stick_ratios(pr, c, lines_only=True)
+    """Per stick: the time of its middle and the stick velocity over the
+    drive, less the strokes' own pattern (:func:`_less_stroke_pattern`): the
+    series the drive test reads and its extension is fitted to."""
+    t, r, k = stick_ratios(pr, c, lines_only=True, index=True)
+    return t, _less_stroke_pattern(r, k, c)
 
 
 def _drive(pr: Prepared, c: Cycles, fn: float, nperm: int = 199):
-    t, r, k = stick_ratios(pr, c, lines_only=True, index=True)
-    r = _less_stroke_pattern(r, k, c)
+    t, r = _stick_series(pr, c)
     per = c.periods(pr.t)
     if r.size < 8 or per.size < 2:
         return 0.0, math.inf, None, 0.0

@@ -621,19 +621,34 @@ SCALED = {"twin_branch": ("delta", "dg"), "load_variation": ("load_k", "load_kx"
           "creep": ("creep1",)}
 
 
+#: records longer than this (samples) refine their extension with fewer golden-section steps, in proportion
+#: (at least REFINE_MIN_STEPS): each step simulates the whole record several times, and the search's last
+#: steps move the factor by less than the scatter of a long record's gain (the scale limit: 750 000 samples
+#: in under a minute)
+REFINE_FULL = 250_000
+REFINE_MIN_STEPS = 4
+
+
 def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, target_mask, target,
            ylow=None, it: int = 8) -> tuple:
     """Scale the extension's own parameter(s) of ``best`` by a factor in
     [0, 2] chosen by golden-section search on the training error (the level
-    refitted each time).  Returns (params, training error)."""
+    refitted each time; ``it`` steps, fewer on a record longer than
+    REFINE_FULL samples).  Returns (params, training error)."""
+    if pr.x.size > REFINE_FULL:
+        it = max(REFINE_MIN_STEPS, min(it, int(it * REFINE_FULL / pr.x.size)))
     names = [n for n in SCALED.get(effect, ()) if getattr(best, n) is not None and np.any(getattr(best, n))]
     if not names:
         return best, judge.error(best, bool(best.trig_ay))
     with_y = bool(best.trig_ay)
 
+    made = {}
+
     def make(f):
-        q = best.copy(**{n: f * getattr(best, n) for n in names})
-        return _fit_level(pr, q, fn, target, target_mask, ylow=ylow if q.load_k else None)
+        if f not in made:          # (each simulates the whole record several times: once per factor)
+            q = best.copy(**{n: f * getattr(best, n) for n in names})
+            made[f] = _fit_level(pr, q, fn, target, target_mask, ylow=ylow if q.load_k else None)
+        return made[f]
 
     def cost(f):
         e = judge.error(make(f), with_y)

@@ -23,6 +23,7 @@ frequency.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -205,6 +206,39 @@ def _savgol_fft(x, w: int, order: int, deriv: int, dt: float):
         ev = tt[:h] if out.start == 0 else tt[w - h:]
         y[out] = np.polyval(co, ev) / dt ** deriv
     return y
+
+
+@functools.lru_cache(maxsize=64)
+def savgol3_kernels(w: int, dt: float):
+    """The cubic Savitzky-Golay kernels of window ``w`` (value, first and
+    second derivative): the interior's (for np.correlate) and, for the first
+    and last w // 2 samples, the rows that evaluate the cubic fitted to the
+    first and last w samples there (scipy's ``mode="interp"``)."""
+    from scipy.signal import savgol_coeffs
+
+    h = w // 2
+    mid = [savgol_coeffs(w, 3, deriv=d, delta=dt, use="dot") for d in range(3)]
+    head = [np.array([savgol_coeffs(w, 3, deriv=d, delta=dt, pos=j, use="dot") for j in range(h)]) for d in range(3)]
+    tail = [np.array([savgol_coeffs(w, 3, deriv=d, delta=dt, pos=j, use="dot") for j in range(w - h, w)])
+            for d in range(3)]
+    return mid, head, tail
+
+
+def savgol3(x, w: int, dt: float):
+    """``scipy.signal.savgol_filter(x, w, 3, deriv=d, delta=dt,
+    mode="interp")`` for d = 0, 1, 2 at once (the same arithmetic with the
+    kernels computed once per window: a slip's reverse construction,
+    thousands of times per record).  ``x`` has at least ``w`` samples."""
+    mid, head, tail = savgol3_kernels(int(w), float(dt))
+    h = w // 2
+    out = []
+    for d in range(3):
+        y = np.empty(x.size)
+        y[h:x.size - h] = np.correlate(x, mid[d], mode="valid")
+        y[:h] = head[d] @ x[:w]
+        y[x.size - h:] = tail[d] @ x[x.size - w:]
+        out.append(y)
+    return out
 
 
 def _runs(mask):
@@ -455,13 +489,18 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True) -> Cycles:
             h = max(0.3 * float(np.median(sw)), 8 * noise)
             ix, kd = _zigzag_fast(xl, h)
         last_peak = None
+        # (the local minima before each sample, counted once: a slip with none before its lowest point ends
+        # there, which :func:`arrest` would find at a cost per slip)
+        nmin = np.r_[0, np.cumsum(xl[1:] >= xl[:-1])]
+        ixl, kdl = ix.tolist(), kd.tolist()
         for m in range(ix.size - 1):
-            if kd[m] != 1 or kd[m + 1] != -1:
+            if kdl[m] != 1 or kdl[m + 1] != -1:
                 continue
-            pi_, ti_ = ix[m], ix[m + 1]
-            ti_ = arrest(xl, pi_, ti_, 3 * noise)
+            pi_, ti_ = ixl[m], ixl[m + 1]
+            if nmin[ti_] > nmin[pi_]:
+                ti_ = arrest(xl, pi_, ti_, 3 * noise)
             fall = ti_ - pi_
-            rise = pi_ - ix[m - 1] if m >= 1 else None
+            rise = pi_ - ixl[m - 1] if m >= 1 else None
             if rise is not None and not fall < rise:
                 last_peak = None
                 continue            # not a slip: as slow as the rise before it
