@@ -1652,3 +1652,20 @@ def test_the_slips_smoothing_is_scipys_savgol_filter():
         for d, y in enumerate(savgol3(x, w, 1e-3)):
             ref = savgol_filter(x, w, 3, deriv=d, delta=1e-3, mode="interp")
             assert np.allclose(y, ref, rtol=1e-9, atol=1e-9 * np.max(np.abs(ref)))
+
+
+def test_a_pin_on_disc_angle_column_asks_for_the_sliding_speed(tmp_path):
+    """A pin-on-disc's angle column (degrees) is not a linear drive and the
+    record has no track radius: without --v0 the command asks for the
+    sliding speed naming the column; with it, it says the angle is not read
+    (it had been passed over without a word: found by the black-box audit)."""
+    from lieng.diagnose import read_record
+    from lieng.errors import LiengInputError
+
+    t, x, _ = _forced_coulomb(0.0)
+    p = tmp_path / "pod.csv"
+    p.write_text("Time [s],x [mm],Angle [deg]\n" + "".join(f"{a:.6f},{b:.6f},{2.865 * a:.5f}\n" for a, b in zip(t, x)))
+    with pytest.raises(LiengInputError, match="column Angle is an angle.*--v0"):
+        read_record(p)
+    rec = read_record(p, v0=2.0)
+    assert any("Angle" in s and "not read" in s for s in rec.notes), rec.notes

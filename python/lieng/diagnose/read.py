@@ -174,6 +174,17 @@ def _role(name: str, unit: str = ""):
     return next((r for r in named if fits is None or r in fits), named[0] if named else None)
 
 
+#: the units and words of an angle column (a pin-on-disc's or a rotary stage's)
+_ANGLE_UNITS = {"deg", "degree", "degrees", "rad", "radian", "radians", "rev", "revolutions", "turns", "°"}
+_ANGLE_WORDS = {"angle", "theta", "rotation", "revolution", "revolutions", "revs", "azimuth"}
+
+
+def _is_angle(name: str, unit: str = "") -> bool:
+    """Whether a column (of no role) is an angle, by its unit or its name."""
+    words = set(re.split(r"[^a-z0-9]+", name.strip().lower()))
+    return unit.strip().lower() in _ANGLE_UNITS or bool(words & _ANGLE_WORDS)
+
+
 def _column_role(name: str, unit: str = ""):
     """(role, unit) of a header cell: :func:`_role`, or with the unit as the
     name's last part ("time_s", "force_mN")."""
@@ -313,6 +324,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                   f"the {role} channel?)")
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
+    # a rotating drive's angle (a pin-on-disc's): not a linear drive, and its radius is not in the record
+    angle = next((n for n, u in zip(tab.names, tab.units) if _column_role(n, u)[0] is None and _is_angle(n, u)), None)
     drive_note = None
     if "x" in cols and "F" in cols and "position" not in cols and "v0" not in cols and _one_way(cols["x"][1]):
         # a displacement beside a force that only goes one way is the stage's travel, not the spring's extension
@@ -420,7 +433,13 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     elif "position" in cols:
         pos = cols["position"][1] * _scale(path, cols["position"][0], units["position"], _LENGTH, "position")
     elif v0 is None:
+        if angle is not None:
+            _fail(f"{path}: column {angle} is an angle (a rotating drive's): the drive velocity is needed as a "
+                  f"sliding speed: give --v0 (mm/s: the angular speed times the track radius)")
         _fail(f"{path}: no drive column (v0 or position) and no --v0: the drive velocity is needed")
+    elif angle is not None:
+        notes.append(f"column {angle} (an angle: a rotating drive's) is not read: the drive is --v0, the sliding "
+                     f"speed at the track")
     if v0 is not None and (vcol is not None or pos is not None):
         notes.append("--v0 ignored: the record gives the drive")
     if v0 is not None and vcol is None and pos is None:
