@@ -1669,3 +1669,22 @@ def test_a_pin_on_disc_angle_column_asks_for_the_sliding_speed(tmp_path):
         read_record(p)
     rec = read_record(p, v0=2.0)
     assert any("Angle" in s and "not read" in s for s in rec.notes), rec.notes
+
+
+def test_a_slider_and_a_stage_position_give_the_spring_extension(tmp_path):
+    """A laser on the slider and an encoder on the stage, and no force
+    column: the spring's extension is the stage's position less the
+    slider's, the drive the stage's (the record had been refused for want
+    of an x or F column: black-box audit)."""
+    from lieng.diagnose import read_record
+
+    t, x, _ = _forced_coulomb(0.0)
+    stage = 2.0 * t
+    p = tmp_path / "laser.csv"
+    p.write_text("Time [s],Slider position [um],Stage position [mm]\n"
+                 + "".join(f"{a:.6f},{1e3 * (c - b):.4f},{c:.7f}\n" for a, b, c in zip(t, x, stage)))
+    rec = read_record(p)
+    assert np.allclose(rec.x, x, atol=2e-6)
+    mid = slice(rec.t.size // 20, -rec.t.size // 20)
+    assert abs(np.median(rec.vd[mid]) / 2.0 - 1.0) < 0.01
+    assert any("Slider position" in s and "extension" in s for s in rec.notes), rec.notes

@@ -185,6 +185,28 @@ def _is_angle(name: str, unit: str = "") -> bool:
     return unit.strip().lower() in _ANGLE_UNITS or bool(words & _ANGLE_WORDS)
 
 
+#: words that name the slider's own position and the drive's (stage's) position
+_SLIDER_WORDS = {"slider", "pin", "mass", "block", "carriage", "specimen", "sample", "rider", "body", "puck", "sled"}
+_STAGE_WORDS = {"stage", "drive", "table", "motor", "belt", "actuator", "encoder", "driver"}
+
+
+def _slider_and_stage(tab):
+    """((name, unit) of the slider's position, (name, unit) of the stage's)
+    when the header has exactly one of each among its position columns
+    (lengths), else None."""
+    sl, dr = [], []
+    for n, u in zip(tab.names, tab.units):
+        role, u2 = _column_role(n, u)
+        if role not in ("position", "x") or _unit_key(u2) not in _LENGTH:
+            continue
+        words = set(re.split(r"[^a-z0-9]+", n.strip().lower()))
+        if words & _SLIDER_WORDS and not words & _STAGE_WORDS:
+            sl.append((n, u2))
+        elif words & _STAGE_WORDS and not words & _SLIDER_WORDS:
+            dr.append((n, u2))
+    return (sl[0], dr[0]) if len(sl) == 1 and len(dr) == 1 else None
+
+
 def _column_role(name: str, unit: str = ""):
     """(role, unit) of a header cell: :func:`_role`, or with the unit as the
     name's last part ("time_s", "force_mN")."""
@@ -324,6 +346,22 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                   f"the {role} channel?)")
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
+    # a slider's position beside the stage's (a laser on the slider, an encoder on the stage) and no force or
+    # extension: the spring's extension is their difference
+    if "x" not in cols and "F" not in cols:
+        pair = _slider_and_stage(tab)
+        if pair is not None:
+            (sn, su), (dn, du) = pair
+            ext = tab.columns[dn] * _scale(path, dn, du, _LENGTH, "position") \
+                - tab.columns[sn] * _scale(path, sn, su, _LENGTH, "position")
+            cols["x"], units["x"] = (f"{dn} - {sn}", ext), "mm"
+            cols["position"], units["position"] = (dn, tab.columns[dn]), du
+            notes_pair = (f"columns {sn} and {dn}: the slider's and the stage's positions; the spring's extension "
+                          f"x is the stage's less the slider's")
+        else:
+            notes_pair = None
+    else:
+        notes_pair = None
     # a rotating drive's angle (a pin-on-disc's): not a linear drive, and its radius is not in the record
     angle = next((n for n, u in zip(tab.names, tab.units) if _column_role(n, u)[0] is None and _is_angle(n, u)), None)
     drive_note = None
@@ -393,7 +431,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (mu_note, drive_note, serial_note, runs_note, stamps_note) if m]
+    notes = [m for m in (notes_pair, mu_note, drive_note, serial_note, runs_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
