@@ -292,8 +292,10 @@ def _drive_from_position(pos, dt, notes):
     if nz.size >= 10 and pos.size >= 4 * m:
         q = float(np.percentile(nz, 5))
         noise = noise_level(pos)
+        # (its travel while it moves: blocks that travel beyond five times what the noise makes of a block's
+        # travel; a slide-hold-slide record stands still most of the time)
         travel = np.abs(pos[m::m] - pos[:-m:m]) / m
-        travel = travel[travel > 0]
+        travel = travel[travel > 5.0 * noise * math.sqrt(2.0) / m]
         per_sample = float(np.median(travel)) if travel.size else 0.0
         what, step = (("noise", noise) if noise > q else ("steps", q))
         if 0 < per_sample < step:
