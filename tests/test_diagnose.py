@@ -1592,6 +1592,37 @@ def test_a_record_that_stops_stick_slipping_is_analysed_where_it_stick_slips():
     assert stick_slip_span(pr, find_cycles(pr, 10.0)) is None
 
 
+def test_a_stepped_drive_whose_one_level_slides_steadily_is_analysed_on_its_stick_slip():
+    """A Coulomb slider (plain NumPy) that stick-slips for 6 s, slides
+    steadily for 8 s (a drive level at which the rig is on its other
+    attractor), stick-slips for 12 s, slides steadily for 8 s and
+    stick-slips for 4 s: the record is analysed on its longest stick-slip
+    part, from its first arrest, and the steady stretches and the cycles
+    left out are said (a baseline started in stick stick-slips through a
+    steady stretch: two generators' effect-free stepped-drive records were
+    `unexplained` for it).  Two runs of cycles without a steady stretch
+    between them are not cut."""
+    from lieng.diagnose.segment import find_cycles, prepare, stick_slip_span
+
+    t, x, _ = _forced_coulomb(0.0, seconds=12.0)
+    g = np.random.default_rng(2)
+    dt = t[1] - t[0]
+    steady = lambda sec: 0.5 + 0.002 * g.standard_normal(int(sec / dt))
+    xs = np.r_[x[:int(6 / dt)], steady(8), x, steady(8), x[:int(4 / dt)]]
+    tt = np.arange(xs.size) * dt
+    pr = prepare(record_from_arrays(tt, xs, 2.0))
+    c = find_cycles(pr, 10.0)
+    span = stick_slip_span(pr, c)
+    assert span is not None
+    a, b, said = span
+    assert 14.0 <= tt[a] < 14.6 and 25.8 < tt[b - 1] <= 26.1
+    assert a in set(c.trough_i.tolist())
+    assert said.count(" s (x at ") == 2 and "cycles outside its longest stick-slip part left out" in said
+    # the same runs back to back (no steady stretch): one run, nothing cut
+    pr = prepare(record_from_arrays(np.arange(2 * t.size) * dt, np.r_[x, x], 2.0))
+    assert stick_slip_span(pr, find_cycles(pr, 10.0)) is None
+
+
 def test_a_mains_frequency_that_is_a_harmonic_of_the_record_is_its_own():
     """A stick-slip at 8.6 Hz has its 7th harmonic at 60.2 Hz, within the
     mains grid's tolerance, and a reciprocating rig's 10 Hz square wave its

@@ -132,41 +132,70 @@ STEADY_SHARE = 0.2
 STEADY_PERIODS = 10
 #: ... with x within this share of the drop about its level (its standard deviation)
 STEADY_SPREAD = 0.1
+#: the fewest cycles of a run of stick-slip between steady stretches
+STEADY_RUN = 3
 
 
 def stick_slip_span(p: Prepared, c: Cycles):
-    """Where the record stick-slips when it slides steadily before or after
-    (the drive changed, a lubricant came in): (a, b, what was left out, in
-    words) with a margin of two periods, or None when the cycles span it.
-    A part left out lies before or after the longest run of cycles, spans
-    STEADY_SHARE of the record and STEADY_PERIODS periods at least, and is
-    steady: the drive moves (above a twentieth of its fast level) and x
-    holds its level within STEADY_SPREAD of the drop."""
+    """Where the record stick-slips when it also slides steadily (the drive
+    changed to a level where it does not stick-slip, a lubricant came in):
+    (a, b, what was left out, in words) with a margin of two periods, or
+    None when the cycles span it.  The record's runs of cycles are those no
+    further apart than STEADY_PERIODS periods; the stretches before, between
+    and after them that are steady (the drive moves, above a twentieth of
+    its fast level, and x holds its level within STEADY_SPREAD of the drop)
+    and span STEADY_PERIODS periods at least are the record's steady
+    sliding.  When they span STEADY_SHARE of the record, the record is
+    analysed on its longest run of cycles: a baseline started in stick
+    stick-slips through a steady stretch (a stepped drive whose one level
+    slides steadily: the record on the other of two attractors), which no
+    model of the cycles can be judged on.  The cycles of the other runs are
+    then left out too, and said."""
     if c.n < 4:
         return None
     per = c.periods(p.t)
     P = float(np.median(per)) if per.size else float(np.median(p.t[c.trough_i] - p.t[c.peak_i])) * 4
     m = int(round(2 * P / p.dt))
-    # the longest run of cycles no further apart than STEADY_PERIODS periods of moving drive (the samples:
-    # dwells are cut out of the prepared record); a lone drop outside it (a start-up) is no stick-slip
+    # the runs of cycles no further apart than STEADY_PERIODS periods of moving drive (the samples: dwells are
+    # cut out of the prepared record); a lone drop outside them (a start-up) is no stick-slip
     cut = np.flatnonzero(np.diff(c.peak_i) * p.dt > STEADY_PERIODS * P)
     runs = np.split(np.arange(c.n), cut + 1)
     run = max(runs, key=len)
+    # (a drop or two on their own within a steady stretch is no run: the stretch is judged with them in it)
+    runs = [r for r in runs if r.size >= STEADY_RUN] or [run]
     a, b = max(int(c.peak_i[run[0]]) - m, 0), min(int(c.trough_i[run[-1]]) + m + 1, p.t.size)
     n = p.t.size
     D = c.amplitude(p.x)
     vmove = 0.05 * float(np.percentile(np.abs(p.vd), 90))
+    # the stretches without cycles: before the first run, between runs (less two periods each side), after
+    # the last
+    gaps = [(0, max(int(c.peak_i[runs[0][0]]) - m, 0))]
+    gaps += [(int(c.trough_i[r0[-1]]) + m + 1, int(c.peak_i[r1[0]]) - m) for r0, r1 in zip(runs[:-1], runs[1:])]
+    gaps.append((min(int(c.trough_i[runs[-1][-1]]) + m + 1, n), n))
     # steady: the drive moves and x holds its level (within STEADY_SPREAD of the drop: no stick-slip the
     # cycle finder missed, no hold)
-    parts = [(i, j) for i, j in ((0, a), (b, n)) if j - i > 1 and (j - i) * p.dt >= STEADY_PERIODS * P
+    # (a stretch between two runs is over STEADY_PERIODS periods from drop to drop: less its margins, 4 fewer)
+    parts = [(i, j) for i, j in gaps if j - i > 1
+             and (j - i) * p.dt >= (STEADY_PERIODS - (4 if 0 < i and j < n else 0)) * P
              and np.median(np.abs(p.vd[i:j])) > vmove and np.std(p.x[i:j]) < STEADY_SPREAD * D]
     if not parts or sum(j - i for i, j in parts) < STEADY_SHARE * n:
         return None
-    a = a if any(i == 0 for i, _ in parts) else 0
-    b = b if any(j == n for _, j in parts) else n
+    inner = len(runs) > 1 and any(0 < i and j < n for i, j in parts)
+    if inner:
+        # from the run's first arrest (the slider stuck: the baseline's own start) to a quarter period past
+        # its last: no stretch of the steady sliding at its ends, where the baseline started in stick
+        # stick-slips
+        a, b = int(c.trough_i[run[0]]), min(int(c.trough_i[run[-1]]) + int(round(0.25 * P / p.dt)) + 1, n)
+    else:
+        # steady only before or after the stick-slip: the run is the record's stick-slip, kept whole
+        a = a if any(i == 0 for i, _ in parts) else 0
+        b = b if any(j == n for _, j in parts) else n
     said = "; ".join(f"{p.t[i]:.4g} to {p.t[j - 1]:.4g} s (x at {np.median(p.x[i:j]):.4g} +- "
                      f"{np.std(p.x[i:j]):.2g} mm, drive {np.median(np.abs(p.vd[i:j])):.4g} mm/s)"
-                     for i, j in parts if (i == 0 and a > 0) or (j == n and b < n))
+                     for i, j in parts if j <= a or i >= b)
+    others = int(np.count_nonzero((c.peak_i < a) | (c.peak_i >= b)))
+    if inner and others:
+        said += f"; {others} cycle{'s' if others > 1 else ''} outside its longest stick-slip part left out"
     return a, b, said
 
 
@@ -206,6 +235,39 @@ def _savgol_fft(x, w: int, order: int, deriv: int, dt: float):
         ev = tt[:h] if out.start == 0 else tt[w - h:]
         y[out] = np.polyval(co, ev) / dt ** deriv
     return y
+
+
+@functools.lru_cache(maxsize=64)
+def savgol3_kernels(w: int, dt: float):
+    """The cubic Savitzky-Golay kernels of window ``w`` (value, first and
+    second derivative): the interior's (for np.correlate) and, for the first
+    and last w // 2 samples, the rows that evaluate the cubic fitted to the
+    first and last w samples there (scipy's ``mode="interp"``)."""
+    from scipy.signal import savgol_coeffs
+
+    h = w // 2
+    mid = [savgol_coeffs(w, 3, deriv=d, delta=dt, use="dot") for d in range(3)]
+    head = [np.array([savgol_coeffs(w, 3, deriv=d, delta=dt, pos=j, use="dot") for j in range(h)]) for d in range(3)]
+    tail = [np.array([savgol_coeffs(w, 3, deriv=d, delta=dt, pos=j, use="dot") for j in range(w - h, w)])
+            for d in range(3)]
+    return mid, head, tail
+
+
+def savgol3(x, w: int, dt: float):
+    """``scipy.signal.savgol_filter(x, w, 3, deriv=d, delta=dt,
+    mode="interp")`` for d = 0, 1, 2 at once (the same arithmetic with the
+    kernels computed once per window: a slip's reverse construction,
+    thousands of times per record).  ``x`` has at least ``w`` samples."""
+    mid, head, tail = savgol3_kernels(int(w), float(dt))
+    h = w // 2
+    out = []
+    for d in range(3):
+        y = np.empty(x.size)
+        y[h:x.size - h] = np.correlate(x, mid[d], mode="valid")
+        y[:h] = head[d] @ x[:w]
+        y[x.size - h:] = tail[d] @ x[x.size - w:]
+        out.append(y)
+    return out
 
 
 @functools.lru_cache(maxsize=64)
