@@ -270,39 +270,6 @@ def savgol3(x, w: int, dt: float):
     return out
 
 
-@functools.lru_cache(maxsize=64)
-def savgol3_kernels(w: int, dt: float):
-    """The cubic Savitzky-Golay kernels of window ``w`` (value, first and
-    second derivative): the interior's (for np.correlate) and, for the first
-    and last w // 2 samples, the rows that evaluate the cubic fitted to the
-    first and last w samples there (scipy's ``mode="interp"``)."""
-    from scipy.signal import savgol_coeffs
-
-    h = w // 2
-    mid = [savgol_coeffs(w, 3, deriv=d, delta=dt, use="dot") for d in range(3)]
-    head = [np.array([savgol_coeffs(w, 3, deriv=d, delta=dt, pos=j, use="dot") for j in range(h)]) for d in range(3)]
-    tail = [np.array([savgol_coeffs(w, 3, deriv=d, delta=dt, pos=j, use="dot") for j in range(w - h, w)])
-            for d in range(3)]
-    return mid, head, tail
-
-
-def savgol3(x, w: int, dt: float):
-    """``scipy.signal.savgol_filter(x, w, 3, deriv=d, delta=dt,
-    mode="interp")`` for d = 0, 1, 2 at once (the same arithmetic with the
-    kernels computed once per window: a slip's reverse construction,
-    thousands of times per record).  ``x`` has at least ``w`` samples."""
-    mid, head, tail = savgol3_kernels(int(w), float(dt))
-    h = w // 2
-    out = []
-    for d in range(3):
-        y = np.empty(x.size)
-        y[h:x.size - h] = np.correlate(x, mid[d], mode="valid")
-        y[:h] = head[d] @ x[:w]
-        y[x.size - h:] = tail[d] @ x[x.size - w:]
-        out.append(y)
-    return out
-
-
 def _runs(mask):
     """Start and end (exclusive) of the True runs of a boolean array."""
     d = np.diff(np.r_[0, mask.astype(np.int8), 0])
