@@ -1719,3 +1719,42 @@ def test_a_slider_and_a_stage_position_give_the_spring_extension(tmp_path):
     mid = slice(rec.t.size // 20, -rec.t.size // 20)
     assert abs(np.median(rec.vd[mid]) / 2.0 - 1.0) < 0.01
     assert any("Slider position" in s and "extension" in s for s in rec.notes), rec.notes
+
+
+def test_a_cam_load_raises_the_peaks_without_ageing():
+    """A Coulomb slider (0.5 / 0.4; plain NumPy, semi-implicit Euler at 40 kHz) on a
+    cam: the normal force follows the drive's position, N = 1 + 0.2 sin(2 pi
+    travel / 8 mm), recorded.  The peaks and the sticks grow and shrink with
+    it together, which is no ageing: read per unit of the load not locked to
+    the stick-slip within its cycles, the peaks do not grow with the stick
+    time (the audit's cam-load control had its slow load counted as locked
+    to the motion, since x's peaks follow it, and `static_ageing` detected
+    at +0.61 of the drop)."""
+    from lieng.diagnose.evidence import statistics
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    wn, h, v0, fs, fk = 2 * math.pi * 10.0, 1.0 / 40000, 2.0, 0.5, 0.4
+    n = int(24.0 / h)
+    x, xd, stick = 0.3, v0, True
+    xs, ns = np.empty(n // 20), np.empty(n // 20)
+    for i in range(n):
+        load = 1.0 + 0.2 * math.sin(2 * math.pi * v0 * i * h / 8.0)
+        if stick:
+            x += v0 * h
+            if x >= fs * load:
+                stick = False
+        else:
+            xd += h * wn * wn * (fk * load - x)
+            x += h * xd
+            if xd >= v0:
+                stick, xd = True, v0
+        if i % 20 == 0:
+            xs[i // 20], ns[i // 20] = x, load
+    t = np.arange(xs.size) * 20 * h
+    g = np.random.default_rng(4)
+    rec = record_from_arrays(t, xs + 0.002 * g.standard_normal(t.size), v0,
+                             y=10.0 * ns + 0.01 * g.standard_normal(t.size), y_is_force=True)
+    pr = prepare(rec)
+    c = find_cycles(pr, 10.0)
+    st, se, _ = statistics(pr, c, 10.0, y=pr.y, y_is_force=True)
+    assert abs(st["static_ageing"]) < 0.05 + 2 * se["static_ageing"], (st["static_ageing"], se["static_ageing"])

@@ -335,6 +335,26 @@ def stick_loading(pr: Prepared, c: Cycles, k) -> np.ndarray:
     return np.array([float(np.max(a[i:j + 1])) for i, j in zip(lo, hi)])
 
 
+def _locked_within_cycles(pr: Prepared, c: Cycles, y):
+    """The part of y locked to the motion within the cycles, sample by
+    sample: y less its moving mean over a stick-slip period, fitted on x
+    and x' less theirs (each drive direction apart)."""
+    from scipy.ndimage import uniform_filter1d
+
+    per = c.periods(pr.t)
+    w = max(3, int(round(float(np.median(per)) / pr.dt)) | 1) if per.size else 3
+    fast = lambda z: z - uniform_filter1d(np.asarray(z, float), w, mode="nearest")
+    yf, xf, vf = fast(y), fast(pr.x), fast(c.v)
+    out = np.zeros(y.size)
+    sign = directions(pr)
+    for d in (1, -1):
+        m = sign == d
+        if np.count_nonzero(m) > 3:
+            A = np.column_stack([xf[m], vf[m]])
+            out[m] = A @ np.linalg.lstsq(A, yf[m], rcond=None)[0]
+    return out
+
+
 def _ageing(pr: Prepared, c: Cycles, unit=None):
     k, ts, pk = stick_times(pr, c)
     if unit is not None:
@@ -619,7 +639,10 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
         # a recorded normal force: the peaks are read per unit of its part not locked to the motion (a load
         # that changes between the sticks changes the peaks and the stick times together, which is no ageing;
         # a load locked to the motion is the same at every peak of a stick-slip)
-        free = ylow - lock
+        # (locked within the cycles: N less its course over a period against x and x' less theirs; a load that
+        # changes over many cycles, a cam's or a tilted track's, is not locked to the motion even where the
+        # peaks it raises make x follow it, and the peaks are read per unit of it)
+        free = ylow - _locked_within_cycles(pr, c, y)
         m = float(np.mean(free))
         unit = free / m if abs(m) > 0 and np.all(free * np.sign(m) > 0.2 * abs(m)) else None
     v, e, lrange = _ageing(pr, c, unit)
