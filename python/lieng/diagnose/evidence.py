@@ -39,7 +39,8 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     varies.
 ``static_ageing``
     The peak (per unit load, with a normal force recorded: its part not
-    locked to the motion) against the log of the stick time (trough to next
+    locked to the motion within the cycles, so that a cam's slow load is
+    divided out) against the log of the stick time (trough to next
     peak, also across a hold): the change over the record's whole range of
     stick times,
     over D, one-sided (the peak grows with the stick time).  Needs stick
