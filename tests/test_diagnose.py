@@ -1004,11 +1004,11 @@ def test_each_prediction_starts_from_the_stick_line_not_a_rebound_below_it():
 
 
 
-def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, seconds=12.0, seed=0):
+def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, seconds=12.0, seed=0, load_of=None):
     """A Coulomb slider whose load is modulated, N (1 + eps sin(2 pi f t)), f = r fn (the
     static and the kinetic force both), stepped by semi-implicit Euler at 40 kHz (plain NumPy,
     no lieng code), sampled at 2 kHz; ``sensor``: a line at f added to the recorded x (a
-    vibration of the sensor, not of the load)."""
+    vibration of the sensor, not of the load); ``load_of(t)``: the load instead."""
     g = np.random.default_rng(seed)
     wn, w, h = 2 * math.pi * fn, 2 * math.pi * r * fn, 1.0 / 40000
     n = int(seconds / h)
@@ -1016,7 +1016,7 @@ def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, sec
     out = np.empty(n // 20)
     for i in range(n):
         t = i * h
-        load = 1.0 + eps * math.sin(w * t)
+        load = 1.0 + eps * math.sin(w * t) if load_of is None else load_of(t)
         if stick:
             x += v0 * h
             if x >= fs * load:
@@ -1733,27 +1733,10 @@ def test_a_cam_load_raises_the_peaks_without_ageing():
     from lieng.diagnose.evidence import statistics
     from lieng.diagnose.segment import find_cycles, prepare
 
-    wn, h, v0, fs, fk = 2 * math.pi * 10.0, 1.0 / 40000, 2.0, 0.5, 0.4
-    n = int(24.0 / h)
-    x, xd, stick = 0.3, v0, True
-    xs, ns = np.empty(n // 20), np.empty(n // 20)
-    for i in range(n):
-        load = 1.0 + 0.2 * math.sin(2 * math.pi * v0 * i * h / 8.0)
-        if stick:
-            x += v0 * h
-            if x >= fs * load:
-                stick = False
-        else:
-            xd += h * wn * wn * (fk * load - x)
-            x += h * xd
-            if xd >= v0:
-                stick, xd = True, v0
-        if i % 20 == 0:
-            xs[i // 20], ns[i // 20] = x, load
-    t = np.arange(xs.size) * 20 * h
-    g = np.random.default_rng(4)
-    rec = record_from_arrays(t, xs + 0.002 * g.standard_normal(t.size), v0,
-                             y=10.0 * ns + 0.01 * g.standard_normal(t.size), y_is_force=True)
+    cam = lambda t: 1.0 + 0.2 * np.sin(2 * np.pi * 2.0 * t / 8.0)
+    t, x, _ = _forced_coulomb(0.0, fs=0.5, fk=0.4, seconds=24.0, seed=4, load_of=cam)
+    n = 10.0 * cam(t) + 0.01 * np.random.default_rng(4).standard_normal(t.size)
+    rec = record_from_arrays(t, x, 2.0, y=n, y_is_force=True)
     pr = prepare(rec)
     c = find_cycles(pr, 10.0)
     st, se, _ = statistics(pr, c, 10.0, y=pr.y, y_is_force=True)
