@@ -190,13 +190,12 @@ _SLIDER_WORDS = {"slider", "pin", "mass", "block", "carriage", "specimen", "samp
 _STAGE_WORDS = {"stage", "drive", "table", "motor", "belt", "actuator", "encoder", "driver"}
 
 
-def _slider_and_stage(tab):
+def _slider_and_stage(roles):
     """((name, unit) of the slider's position, (name, unit) of the stage's)
-    when the header has exactly one of each among its position columns
-    (lengths), else None."""
+    when the header's columns ``roles`` ((name, role, unit) each) have
+    exactly one of each among their position columns (lengths), else None."""
     sl, dr = [], []
-    for n, u in zip(tab.names, tab.units):
-        role, u2 = _column_role(n, u)
+    for n, role, u2 in roles:
         if role not in ("position", "x") or _unit_key(u2) not in _LENGTH:
             continue
         words = set(re.split(r"[^a-z0-9]+", n.strip().lower()))
@@ -339,9 +338,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
                      missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None,
                      sparse=lambda name, unit: _column_role(name, unit)[0] in ("position", "v0", "y", "N"))
+    roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
     cols, units = {}, {}
-    for name, unit in zip(tab.names, tab.units):
-        role, unit = _column_role(name, unit)
+    for name, role, unit in roles:
         if role and tab.names.count(name) > 1:
             where = [str(i + 1) for i, m in enumerate(tab.names) if m == name]
             _fail(f"{path}: header: columns {' and '.join(where)} are both named {name!r}: rename one (which is "
@@ -350,22 +349,18 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             cols[role], units[role] = (name, tab.columns[name]), unit
     # a slider's position beside the stage's (a laser on the slider, an encoder on the stage) and no force or
     # extension: the spring's extension is their difference
-    if "x" not in cols and "F" not in cols:
-        pair = _slider_and_stage(tab)
-        if pair is not None:
-            (sn, su), (dn, du) = pair
-            ext = tab.columns[dn] * _scale(path, dn, du, _LENGTH, "position") \
-                - tab.columns[sn] * _scale(path, sn, su, _LENGTH, "position")
-            cols["x"], units["x"] = (f"{dn} - {sn}", ext), "mm"
-            cols["position"], units["position"] = (dn, tab.columns[dn]), du
-            notes_pair = (f"columns {sn} and {dn}: the slider's and the stage's positions; the spring's extension "
-                          f"x is the stage's less the slider's")
-        else:
-            notes_pair = None
-    else:
-        notes_pair = None
+    pair = _slider_and_stage(roles) if "x" not in cols and "F" not in cols else None
+    notes_pair = None
+    if pair is not None:
+        (sn, su), (dn, du) = pair
+        ext = tab.columns[dn] * _scale(path, dn, du, _LENGTH, "position") \
+            - tab.columns[sn] * _scale(path, sn, su, _LENGTH, "position")
+        cols["x"], units["x"] = (f"{dn} - {sn}", ext), "mm"
+        cols["position"], units["position"] = (dn, tab.columns[dn]), du
+        notes_pair = (f"columns {sn} and {dn}: the slider's and the stage's positions; the spring's extension "
+                      f"x is the stage's less the slider's")
     # a rotating drive's angle (a pin-on-disc's): not a linear drive, and its radius is not in the record
-    angle = next((n for n, u in zip(tab.names, tab.units) if _column_role(n, u)[0] is None and _is_angle(n, u)), None)
+    angle = next((n for (n, role, _), u in zip(roles, tab.units) if role is None and _is_angle(n, u)), None)
     drive_note = None
     if "x" in cols and "F" in cols and "position" not in cols and "v0" not in cols and _one_way(cols["x"][1]):
         # a displacement beside a force that only goes one way is the stage's travel, not the spring's extension
