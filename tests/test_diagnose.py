@@ -1004,19 +1004,23 @@ def test_each_prediction_starts_from_the_stick_line_not_a_rebound_below_it():
 
 
 
-def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, seconds=12.0, seed=0, load_of=None):
+def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, seconds=12.0, seed=0, load_of=None,
+                    load_x=0.0):
     """A Coulomb slider whose load is modulated, N (1 + eps sin(2 pi f t)), f = r fn (the
     static and the kinetic force both), stepped by semi-implicit Euler at 40 kHz (plain NumPy,
     no lieng code), sampled at 2 kHz; ``sensor``: a line at f added to the recorded x (a
-    vibration of the sensor, not of the load); ``load_of(t)``: the load instead."""
+    vibration of the sensor, not of the load); ``load_of(t)``: the load instead; ``load_x``:
+    the load also follows the slider, times 1 + load_x (x - 0.8) (then the load at the
+    samples is returned too)."""
     g = np.random.default_rng(seed)
     wn, w, h = 2 * math.pi * fn, 2 * math.pi * r * fn, 1.0 / 40000
     n = int(seconds / h)
     x, xd, stick = 0.3, v0, True
-    out = np.empty(n // 20)
+    out, loads = np.empty(n // 20), np.empty(n // 20)
     for i in range(n):
         t = i * h
         load = 1.0 + eps * math.sin(w * t) if load_of is None else load_of(t)
+        load *= 1.0 + load_x * (x - 0.8)
         if stick:
             x += v0 * h
             if x >= fs * load:
@@ -1027,10 +1031,10 @@ def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, sec
             if xd >= v0:
                 stick, xd = True, v0
         if i % 20 == 0:
-            out[i // 20] = x
+            out[i // 20], loads[i // 20] = x, load
     tt = np.arange(out.size) * 20 * h
     xs = out + sensor * np.sin(w * tt) + 0.002 * g.standard_normal(out.size)
-    return tt, xs, r * fn
+    return (tt, xs, r * fn) if not load_x else (tt, xs, r * fn, loads)
 
 
 @pytest.mark.parametrize("eps", [0.03, 0.06])
@@ -1741,3 +1745,22 @@ def test_a_cam_load_raises_the_peaks_without_ageing():
     c = find_cycles(pr, 10.0)
     st, se, _ = statistics(pr, c, 10.0, y=pr.y, y_is_force=True)
     assert abs(st["static_ageing"]) < 0.05 + 2 * se["static_ageing"], (st["static_ageing"], se["static_ageing"])
+
+
+@pytest.mark.parametrize("load_x", [0.5, -0.5])
+def test_without_fn_a_load_that_follows_the_slider_is_not_put_into_fn(load_x):
+    """A Coulomb slider (plain NumPy) whose normal force follows its own
+    displacement, N = 1 + load_x (x - 0.8), recorded, no --fn: its slips
+    swing at fn sqrt(1 - 0.6 load_x) (8.4 or 11.4 Hz for fn 10), and a
+    baseline at constant load read fn there (the old reading: 8.38 and
+    11.44 Hz, and no gain for the load, whose extension then counted its
+    effect twice).  Read with the slider's friction following the recorded
+    force, fn is the true one within 5 % (10.03 and 10.04 Hz), and the load is named
+    with a gain."""
+    t, x, _, n = _forced_coulomb(0.0, seconds=12.0, load_x=load_x)
+    rec = record_from_arrays(t, x, 2.0, y=10.0 * n + 0.01 * np.random.default_rng(1).standard_normal(t.size),
+                             y_is_force=True)
+    d = diagnose(rec)
+    assert d.fn_source.startswith("estimated")
+    assert abs(d.fn / 10.0 - 1.0) < 0.05, d.fn
+    assert d.effect == "load_variation" and d.gain >= 0.3, (d.effect, d.gain)

@@ -237,6 +237,18 @@ def _plot_data(pr, c, fn, g0, tsplit) -> dict:
             "slips": (s, F, br), "base_extrema": None if cb is None else (cb.peak_i, cb.trough_i)}
 
 
+def _load_of(rec: Record, pr, f: float):
+    """The recorded normal force low-passed at EXT_LOWPASS f, for the slider
+    whose friction follows it (:func:`.baseline.calibrate_fn`); None without
+    a normal force, or with one that comes near zero or changes sign (no
+    load to divide by)."""
+    if not rec.y_is_force or pr.y is None:
+        return None
+    yl = lowpass(pr.y, pr.dt, EXT_LOWPASS * f)
+    m = float(np.mean(yl))
+    return yl if m != 0 and np.all(yl / m > 0.05) else None
+
+
 def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN_UNCERTAINTY,
              replicates: int = 39, budget: float = REPLICATE_BUDGET, progress=None) -> Diagnosis:
     """Diagnose a record (see the package docstring and the stage modules).
@@ -325,14 +337,18 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         fcal = None
         # a slip lasts half a natural period or longer (friction falling with speed lengthens it): when
         # the baseline at the first guess does not stick-slip, start higher
+        loaded = False
         for m in ((1.0, 1.3, 1.7) if f0 is not None else ()):
-            fcal = calibrate_fn(pr, m * f0)
+            yl = _load_of(rec, pr, m * f0)
+            fcal, loaded = calibrate_fn(pr, m * f0, ylow=yl), yl is not None
             if fcal is not None:
                 break
         if fcal is not None and fcal * pr.dt < 0.2:
             fn_used, src, u_fn = fcal, "estimated from the slips' duration", FN_UNCERTAINTY_DURATION
+            who = ("baseline's slips, their friction following the recorded normal force," if loaded else
+                   "baseline's slips")
             notes.append(f"fn estimated from the slips: {fcal:.4g} Hz is the natural frequency at which the "
-                         f"baseline's slips last as long as the record's (+- {100 * u_fn:.0f} %"
+                         f"{who} last as long as the record's (+- {100 * u_fn:.0f} %"
                          + (f"; their arcs alone say {fd:.4g} Hz" if fd is not None else "") + ")")
         elif fd is not None:
             fn_used, src = fd, "estimated from the slips' arcs"
@@ -346,7 +362,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                 f"like a load): give --fn")
     else:
         fn_used, src, u_fn = float(fn), "given (--fn)", fn_uncertainty
-        fcal = calibrate_fn(pr, fd if fd is not None else fn)
+        fcal = calibrate_fn(pr, fd if fd is not None else fn, ylow=_load_of(rec, pr, fd if fd is not None else fn))
         if fcal is not None and abs(fcal / fn - 1.0) > FN_CHECK:
             warnings.append(f"the slips say fn = {fcal:.4g} Hz (the baseline's slips last as long as the record's "
                             f"there), {100 * (fcal / fn - 1):+.0f} % from --fn {fn:g}: check --fn (the slip-shape "

@@ -335,26 +335,49 @@ def identify(pr: Prepared, c: Cycles, fn: float, load=None, sel=None) -> tuple:
     return sg, fg, float(np.median(peaks))
 
 
-def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6) -> Params:
-    """The baseline (module docstring), identified on ``pr`` with its cycles ``c``."""
-    sg, fg, fs = identify(pr, c, fn)
+def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6, ylow=None) -> Params:
+    """The baseline (module docstring), identified on ``pr`` with its cycles ``c``.
+    With ``ylow`` (a recorded normal *force*, low-passed) the slider's
+    friction is the load times the characteristic (:func:`under_load`), as
+    :func:`calibrate_fn` reads fn under a load that varies; simulate it with
+    ``under_load``'s channel."""
+    load, kw, yfree = under_load(pr, c, ylow) if ylow is not None else (None, {}, None)
+    sg, fg, fs = identify(pr, c, fn, load=load)
     c0, c1 = stick_creep(pr, c)
-    p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1), iters)
-    if (c0 or c1) and _cycles_of(pr, p, fn) < min(3, c.n):
+    p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1, **kw), iters,
+                   yfree)
+    if (c0 or c1) and _cycles_of(pr, p, fn, yfree) < min(3, c.n):
         # a creeping stick that never reaches the static limit is no stick-slip model: the thesis's
         # rigid stick (finite slope only in the sense of ch. 2.3.1.1's steep line) instead
-        p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs)), iters)
+        p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), **kw), iters, yfree)
     return p
 
 
-def _cycles_of(pr, p, fn) -> int:
+def under_load(pr: Prepared, c: Cycles, ylow) -> tuple:
+    """The slider whose friction follows a recorded normal force ``ylow``
+    (Amontons: the characteristic and the static limit per unit load, the
+    load N / its mean): the part of N locked to x (:func:`.signals.y_on_motion`)
+    as a coupling that follows the *simulated* x (``load_kx``; played back in
+    time it would part from a simulated slip that runs early or late), the
+    rest played back in time.  Returns (the record's load factor at every
+    sample, the Params terms, the channel to simulate with)."""
+    from lieng.diagnose.signals import y_on_motion
+
+    m = float(np.mean(ylow))
+    _, c1, _ = y_on_motion(pr.x, c.v, ylow)
+    xref = float(np.mean(pr.x))
+    kw = {"load_k": 1.0 / m, "load_kx": c1 / m, "load_xref": xref}
+    return np.maximum(ylow / m, 0.05), kw, ylow - c1 * (pr.x - xref)
+
+
+def _cycles_of(pr, p, fn, ylow=None) -> int:
     from lieng.diagnose.segment import find_cycles
 
-    xs, _, _ = simulate(pr, p, fn)
+    xs, _, _ = simulate(pr, p, fn, ylow)
     return find_cycles(pr_like(pr, xs), fn, speeds=False).n
 
 
-def _fit_level(pr, c, fn, p, iters):
+def _fit_level(pr, c, fn, p, iters, ylow=None):
     """Move the level of phi until the simulated mean trough matches the record's."""
     fg = p.fg.copy()
     fs = p.fs
@@ -366,7 +389,7 @@ def _fit_level(pr, c, fn, p, iters):
     step = 0.1 * max(d0, 1e-9)
     for _ in range(iters):
         q = p.copy(fg=np.minimum(fg + off, fs))
-        xs, _, _ = simulate(pr, q, fn)
+        xs, _, _ = simulate(pr, q, fn, ylow)
         tr = trough_mean(pr, fn, xs)
         if tr is None:                 # no slip: the kinetic level is too high
             hi_off = off
@@ -390,7 +413,8 @@ def _fit_level(pr, c, fn, p, iters):
 CALIBRATION_SAMPLES = 60_000
 
 
-def calibrate_fn(pr: Prepared, f0: float, iters: int = 6, bound: float = 0.9) -> float | None:
+def calibrate_fn(pr: Prepared, f0: float, iters: int = 6, bound: float = 0.9, ylow=None,
+                 again: int = 1) -> float | None:
     """The natural frequency by **indirect inference** from the slips.
 
     The slips' own arc frequency (:func:`.segment.estimate_fn`) is biased by
@@ -402,33 +426,64 @@ def calibrate_fn(pr: Prepared, f0: float, iters: int = 6, bound: float = 0.9) ->
     ``f0``, within a factor 1 + ``bound`` of it either way (the arcs read
     0.36-1.14 of the true fn on the independent generators' records without
     --fn; a bound of 0.4 about them left a quarter of those records 15-50 %
-    low where the steps had not converged).  Read on the record's first
-    CALIBRATION_SAMPLES samples.  None when the slips or the baseline
-    cannot be read or simulated."""
+    low where the steps had not converged; stopped at the bound, the steps
+    go on once from there).  Read on the record's first
+    CALIBRATION_SAMPLES samples.  With ``ylow`` (a recorded normal force,
+    low-passed) the slider's friction follows it (:func:`fit_baseline`): a
+    load that follows the motion lengthens or shortens the slips as a
+    softer or stiffer spring would, and a baseline at constant load would
+    put that into fn (a third off on a rate-and-state record whose load
+    follows the slider).  None when the slips or the baseline cannot be
+    read or simulated."""
     from lieng.diagnose.segment import find_cycles, head
 
     # a fixed-length part of a long record: as many slips as fix the duration, at a fixed cost
     pr = head(pr, CALIBRATION_SAMPLES)
+    if ylow is not None:
+        ylow = ylow[:pr.t.size]
     dur = slip_seconds(pr, find_cycles(pr, f0))
     if dur is None:
         return None
     f, moved = f0, False
+    seen = []                       # (ln f, ln of the simulated over the record's duration)
     for _ in range(iters):
         c = find_cycles(pr, f)
         if c.n < 3:
             break
         try:
-            base = fit_baseline(pr, c, f)
-            xs, _, _ = simulate(pr, base, f)
+            base = fit_baseline(pr, c, f, ylow=ylow)
+            xs, _, _ = simulate(pr, base, f, None if ylow is None else under_load(pr, c, ylow)[2])
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             break
         q = pr_like(pr, xs)
         ds = slip_seconds(q, find_cycles(q, f))
         if ds is None:
             break
-        fnew = float(np.clip(f * ds / dur, f0 / (1 + bound), f0 * (1 + bound)))
+        seen.append((math.log(f), math.log(ds / dur)))
+        fnew = _next_fn(seen)
+        fnew = float(np.clip(fnew, f0 / (1 + bound), f0 * (1 + bound)))
         step = abs(fnew / f - 1.0)
         f, moved = fnew, True
         if step < 0.003:
             break
+    if moved and again and abs(math.log(f / f0)) >= 0.999 * math.log(1 + bound):
+        # stopped at the bound, still moving that way: once more from there
+        return calibrate_fn(pr, f, iters, bound, ylow, again - 1) or f
     return f if moved else None
+
+
+def _next_fn(seen) -> float:
+    """The next fn of :func:`calibrate_fn` from the (ln f, ln d_sim / d_rec)
+    seen so far: f d_sim / d_rec (a duration that scales as 1 / f) until the
+    ratio has been seen on both sides of 1, then the secant in logs between
+    the closest pair that brackets it (a slip whose duration does not scale
+    as 1 / f, under a load that follows the motion, made the plain step
+    swing about the answer)."""
+    lf, lr = seen[-1]
+    lo = [p for p in seen if p[1] > 0]
+    hi = [p for p in seen if p[1] < 0]
+    if not lo or not hi:
+        return math.exp(lf + lr)
+    a = min(lo, key=lambda p: p[1])
+    b = max(hi, key=lambda p: p[1])
+    return math.exp(a[0] - a[1] * (b[0] - a[0]) / (b[1] - a[1]))
