@@ -362,7 +362,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                 f"like a load): give --fn")
     else:
         fn_used, src, u_fn = float(fn), "given (--fn)", fn_uncertainty
-        fcal = calibrate_fn(pr, fd if fd is not None else fn, ylow=_load_of(rec, pr, fd if fd is not None else fn))
+        f0 = fd if fd is not None else fn
+        fcal = calibrate_fn(pr, f0, ylow=_load_of(rec, pr, f0))
         if fcal is not None and abs(fcal / fn - 1.0) > FN_CHECK:
             warnings.append(f"the slips say fn = {fcal:.4g} Hz (the baseline's slips last as long as the record's "
                             f"there), {100 * (fcal / fn - 1):+.0f} % from --fn {fn:g}: check --fn (the slip-shape "

@@ -335,13 +335,13 @@ def identify(pr: Prepared, c: Cycles, fn: float, load=None, sel=None) -> tuple:
     return sg, fg, float(np.median(peaks))
 
 
-def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6, ylow=None) -> Params:
+def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6, loaded=None) -> Params:
     """The baseline (module docstring), identified on ``pr`` with its cycles ``c``.
-    With ``ylow`` (a recorded normal *force*, low-passed) the slider's
-    friction is the load times the characteristic (:func:`under_load`), as
+    With ``loaded`` (:func:`under_load` of a recorded normal *force*) the
+    slider's friction is the load times the characteristic, as
     :func:`calibrate_fn` reads fn under a load that varies; simulate it with
-    ``under_load``'s channel."""
-    load, kw, yfree = under_load(pr, c, ylow) if ylow is not None else (None, {}, None)
+    ``loaded``'s channel."""
+    load, kw, yfree = loaded if loaded is not None else (None, {}, None)
     sg, fg, fs = identify(pr, c, fn, load=load)
     c0, c1 = stick_creep(pr, c)
     p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1, **kw), iters,
@@ -429,7 +429,7 @@ def calibrate_fn(pr: Prepared, f0: float, iters: int = 6, bound: float = 0.9, yl
     low where the steps had not converged; stopped at the bound, the steps
     go on once from there).  Read on the record's first
     CALIBRATION_SAMPLES samples.  With ``ylow`` (a recorded normal force,
-    low-passed) the slider's friction follows it (:func:`fit_baseline`): a
+    low-passed) the slider's friction follows it (:func:`under_load`): a
     load that follows the motion lengthens or shortens the slips as a
     softer or stiffer spring would, and a baseline at constant load would
     put that into fn (a third off on a rate-and-state record whose load
@@ -451,13 +451,14 @@ def calibrate_fn(pr: Prepared, f0: float, iters: int = 6, bound: float = 0.9, yl
         if c.n < 3:
             break
         try:
-            base = fit_baseline(pr, c, f, ylow=ylow)
-            xs, _, _ = simulate(pr, base, f, None if ylow is None else under_load(pr, c, ylow)[2])
+            ul = under_load(pr, c, ylow) if ylow is not None else None
+            base = fit_baseline(pr, c, f, loaded=ul)
+            xs, _, _ = simulate(pr, base, f, None if ul is None else ul[2])
         except (LiengInputError, np.linalg.LinAlgError, ValueError):
             break
         q = pr_like(pr, xs)
         ds = slip_seconds(q, find_cycles(q, f))
-        if ds is None:
+        if ds is None or not ds > 0:
             break
         seen.append((math.log(f), math.log(ds / dur)))
         fnew = _next_fn(seen)
