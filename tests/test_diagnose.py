@@ -1764,3 +1764,17 @@ def test_without_fn_a_load_that_follows_the_slider_is_not_put_into_fn(load_x):
     assert d.fn_source.startswith("estimated")
     assert abs(d.fn / 10.0 - 1.0) < 0.05, d.fn
     assert d.effect == "load_variation" and d.gain >= 0.3, (d.effect, d.gain)
+
+
+def test_the_report_says_why_a_candidates_evidence_is_withheld(tmp_path):
+    """Without --fn the twin evidence is withheld (its reading cannot be told
+    from an fn error): the report's evidence table says so and why, not "not
+    applicable" (a NumPy Coulomb slider)."""
+    from lieng.diagnose.report import write_outputs
+
+    t, x, _ = _forced_coulomb(0.0)
+    d = diagnose(record_from_arrays(t, x, 2.0))
+    assert "withheld" in d.evidence["twin_branch"]
+    write_outputs(d, tmp_path, "slider", plots=False)
+    row = next(line for line in (tmp_path / "report.md").read_text().splitlines() if line.startswith("| twin_branch"))
+    assert "withheld: without --fn" in row, row

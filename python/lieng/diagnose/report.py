@@ -79,7 +79,11 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
         for k in CANDIDATES:
             r = d.evidence.get(k)
             if not r or not r.get("applicable"):
-                lines.append(f"| {k} | not applicable to this record | | | | | | | | |")
+                # a candidate whose evidence is withheld says why (no --fn, slips the baseline cannot calibrate)
+                why = (r or {}).get("withheld")
+                cell = f"withheld: {why}" if why and why != "does not apply to this record" else \
+                    "not applicable to this record"
+                lines.append(f"| {k} | {cell} | | | | | | | | |")
                 continue
             lines.append(f"| {k} | {_f(r['statistic'], '.4g')} | {_f(r['null_mean'], '.4g')} | "
                          f"{_f(r['null_sd'], '.3g')} | {_f(r['se'] or 0, '.3g')} | {_f(r['effect_size'], '+.4g')} | "
