@@ -656,6 +656,30 @@ def test_a_columns_unit_decides_between_the_roles_its_name_allows(tmp_path):
 
 
 
+def test_a_tribometers_deflection_and_sliding_distance_columns_are_read(tmp_path):
+    """A pin-on-disc export names the spring's (the arm's) extension
+    "deflection" and the drive's travel "distance" (the sliding distance
+    along the track): read as x and as the drive's position (both had been
+    refused: "no displacement ... column", "no drive column")."""
+    from lieng.diagnose import read_record
+    from lieng.diagnose.read import _role
+
+    assert _role("deflection", "mm") == "x"
+    assert _role("distance", "mm") == "position"
+    assert _role("sliding distance", "m") == "position"
+    assert _role("sliding_speed", "mm/s") == "v0"
+    t = np.arange(0.0, 20.0, 0.005)
+    saw = (t * 2.0) % 1.0
+    p = tmp_path / "pod.csv"
+    _write(p, {"time [ms]": 1000.0 * t, "Ft [N]": 1.0 + 0.2 * saw, "distance [mm]": 0.5 * t})
+    rec = read_record(p, stiffness=1000.0)
+    assert rec.drive_recorded and abs(float(np.median(rec.vd)) - 0.5) < 1e-3
+    p2 = tmp_path / "defl.csv"
+    _write(p2, {"Time [s]": t, "deflection [um]": 100.0 * saw})
+    rec = read_record(p2, v0=0.2)
+    assert abs(float(np.ptp(rec.x)) - 0.1) < 1e-3                  # um read as mm
+
+
 def test_a_friction_coefficient_column_is_the_force_over_the_load(tmp_path):
     """Tribometers often record the friction coefficient: "COF" with a
     normal force column is the force mu N (x = mu N / k); "mu" alone is a

@@ -46,7 +46,7 @@ MIN_SAMPLES = 50
 
 _NAMES = {
     "t": ("t", "time", "timestamp", "datetime", "date_time", "date", "zeit", "temps", "x_value"),
-    "x": ("x", "disp", "displacement", "extension", "spring"),
+    "x": ("x", "disp", "displacement", "extension", "spring", "deflection", "defl"),
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity", "geschwindigkeit"),
     "F": ("f", "friction", "force", "friction_force", "ft", "ff", "f_f", "fr", "fx", "tangential", "tangential_force",
@@ -55,7 +55,8 @@ _NAMES = {
     "mu": ("mu", "µ", "μ", "cof", "coefficient_of_friction", "friction_coefficient", "fnorm", "mu_k"),
     "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load", "normalkraft", "sigma",
           "sigma_n", "normal_stress"),
-    "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg"),
+    "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg", "distance",
+                 "sliding_distance", "travel"),
 }
 #: time column names whose plain numbers between 20000 and 80000 are a spreadsheet's serial dates (days)
 EXCEL_DAY_NAMES = ("date", "datetime", "date_time", "date/time", "timestamp", "time stamp", "date time")
@@ -146,8 +147,8 @@ def _check_v0(v0) -> None:
 #: ("Tangential force", "Normal load", "Stage position"), first match wins
 _WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load", "normale")),
           ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement")),
-          ("position", ("position", "stage")), ("v0", ("velocity", "speed", "vitesse")), ("t", ("time", "temps")),
-          ("x", ("displacement", "extension", "deplacement")))
+          ("position", ("position", "stage", "distance", "travel")), ("v0", ("velocity", "speed", "vitesse")),
+          ("t", ("time", "temps")), ("x", ("displacement", "extension", "deplacement", "deflection")))
 
 
 #: the roles a column of a given unit's dimension can have
