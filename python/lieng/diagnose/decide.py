@@ -211,6 +211,11 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, r
     return m0, s0, d, den + band / 1.96, z, float(p), band
 
 
+#: the reason ``decide`` gives a candidate that does not apply to the record (the report shows it as such,
+#: and any other reason as evidence withheld)
+NOT_APPLICABLE = "does not apply to this record"
+
+
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
            withheld=None, u_fn: float = 0.0, sizes=None, fn_readings=None) -> dict:
     """The evidence table: for every candidate the statistic, the null mean
@@ -238,7 +243,7 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
     withheld = withheld or {}
     for k in CANDIDATES:
         if applicable is not None and k not in applicable:
-            withheld.setdefault(k, "does not apply to this record")
+            withheld.setdefault(k, NOT_APPLICABLE)
         if k in withheld:
             rows[k] = dict(statistic=float(st[k]), null_mean=0.0, null_sd=0.0, se=None, z=0.0, p=1.0,
                            effect_size=0.0, applicable=False, withheld=withheld[k])

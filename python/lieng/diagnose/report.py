@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from lieng.io.outputs import dumps_json, plot_name
+from lieng.diagnose.decide import NOT_APPLICABLE
 from lieng.diagnose.evidence import CANDIDATES
 from lieng.diagnose.extend import METRIC
 
@@ -81,7 +82,7 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
             if not r or not r.get("applicable"):
                 # a candidate whose evidence is withheld says why (no --fn, slips the baseline cannot calibrate)
                 why = (r or {}).get("withheld")
-                cell = f"withheld: {why}" if why and why != "does not apply to this record" else \
+                cell = f"withheld: {why}" if why and why != NOT_APPLICABLE else \
                     "not applicable to this record"
                 lines.append(f"| {k} | {cell} | | | | | | | | |")
                 continue
