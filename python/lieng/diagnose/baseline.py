@@ -458,7 +458,7 @@ def calibrate_fn(pr: Prepared, f0: float, iters: int = 6, bound: float = 0.9, yl
             break
         q = pr_like(pr, xs)
         ds = slip_seconds(q, find_cycles(q, f))
-        if ds is None or not ds > 0:
+        if ds is None:
             break
         seen.append((math.log(f), math.log(ds / dur)))
         fnew = _next_fn(seen)
