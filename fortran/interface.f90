@@ -333,7 +333,7 @@ end subroutine core_lsqfit
 
 !> The generalised 1-DoF slider of `lieng diagnose` (module slider).
 subroutine core_slider(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, dg, age_a, age_tau, age_r, age_v, &
-                       kx, xref, creep0, creep1, x0, t0, x, v, state, status)
+                       kx, xref, creep0, creep1, creep_m, x0, t0, x, v, state, status)
    use lienard_core, only: wp
    use slider, only: slider_run
    implicit none
@@ -344,12 +344,12 @@ subroutine core_slider(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, d
    real(wp), intent(in) :: wn, zeta, fs
    integer, intent(in) :: ns
    real(wp), intent(in) :: sg(ns), fg(ns), dg(ns)
-   real(wp), intent(in) :: delta, age_a, age_tau, age_r, age_v, kx, xref, creep0, creep1, x0, t0
+   real(wp), intent(in) :: delta, age_a, age_tau, age_r, age_v, kx, xref, creep0, creep1, creep_m, x0, t0
    real(wp), intent(out) :: x(n), v(n)
    integer, intent(out) :: state(n)
    integer, intent(out) :: status              !< st_ok, st_bad_argument or st_nonfinite_state (status_codes)
    call slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, dg, age_a, age_tau, age_r, age_v, &
-                   kx, xref, creep0, creep1, x0, t0, x, v, state, status)
+                   kx, xref, creep0, creep1, creep_m, x0, t0, x, v, state, status)
 end subroutine core_slider
 
 !> The 2-DoF dual-pin-on-disc model (module twodof).

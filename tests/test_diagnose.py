@@ -820,7 +820,7 @@ def _core_peaks(vd, dt, fs=1.0, age_r=0.0, age_v=1.0):
     n = vd.size
     x, v, state, status = _core.core_slider(dt, 8, vd, np.ones(n), 2 * math.pi * 5.0, 0.0, fs,
                                             np.array([0.0, 100.0]), np.array([0.5, 0.5]), 0.0, np.zeros(2), 0.0, 1.0,
-                                            age_r, age_v, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                                            age_r, age_v, 0.0, 0.0, 0.0, 0.0, 4.0, 0.0, 0.0)
     assert status == 0
     onset = np.flatnonzero((state[:-1] == 1) & (state[1:] == 0))
     return onset, x[onset]
@@ -1533,7 +1533,7 @@ def test_an_ageing_limit_keeps_its_clock_across_a_reversal():
     def first_slip(x0, t0):
         x, v, state, status = _core.core_slider(dt, 8, vd, np.ones(n), 2 * math.pi * 5.0, 0.0, fs,
                                                 np.array([0.0, 100.0]), np.array([0.5, 0.5]), 0.0, np.zeros(2),
-                                                a, tau, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, x0, t0)
+                                                a, tau, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 4.0, x0, t0)
         assert status == 0
         slip = np.flatnonzero(state == 0)
         return slip[0] if slip.size else None
@@ -1802,3 +1802,59 @@ def test_the_report_says_why_a_candidates_evidence_is_withheld(tmp_path):
     write_outputs(d, tmp_path, "slider", plots=False)
     row = next(line for line in (tmp_path / "report.md").read_text().splitlines() if line.startswith("| twin_branch"))
     assert "withheld: without --fn" in row, row
+
+
+def _eyring_creep(fn=10.0, v0=2.0, fs=1.0, fk=0.6, a=0.7, w=0.03, seconds=12.0, seed=0):
+    """A Coulomb slider that creeps in stick as a thermally activated
+    contact does: the slider's creep velocity a v0 exp(-(1 - x / fs) / w), so
+    the creep gathers in the last few per cent of the rise (an exponential
+    law, not the baseline's power of x); slip at x = fs; semi-implicit Euler
+    at 40 kHz (plain NumPy, no lieng code), sampled at 2 kHz."""
+    g = np.random.default_rng(seed)
+    wn, h = 2 * math.pi * fn, 1.0 / 40000
+    n = int(seconds / h)
+    x, xd, stick = 0.3, v0, True
+    out = np.empty(n // 20)
+    for i in range(n):
+        if stick:
+            x += h * v0 * (1.0 - a * math.exp(-(1.0 - x / fs) / w))
+            if x >= fs:
+                stick = False
+        else:
+            xd += h * wn * wn * (fk - x)
+            x += h * xd
+            if xd >= v0:
+                stick, xd = True, v0
+        if i % 20 == 0:
+            out[i // 20] = x
+    return np.arange(out.size) * 20 * h, out + 0.002 * g.standard_normal(out.size)
+
+
+def test_a_creep_gathered_near_the_static_limit_is_read_with_its_shape():
+    """A stick whose creep gathers in the last few per cent of the rise
+    (an Eyring-type slider, exponential in the force) after slips that drop
+    x to 0.6 of the limit: the baseline's stick law (ch. 2.3.1.1's
+    1 - c0 - c1 r**m, m read from the record) lasts as long as the record's
+    sticks, and the baseline's one-cycle-ahead stick times are right to 1.5 %
+    of the period.  (r**4, scaled as if the slips dropped x near zero,
+    spread the creep over the whole rise: sticks 31 % too long, stick times
+    26 % of the period long.)"""
+    from lieng.diagnose.baseline import fit_baseline, pr_like, simulate
+    from lieng.diagnose.extend import Judge
+    from lieng.diagnose.segment import find_cycles, prepare
+    t, x = _eyring_creep(fk=0.8, a=0.85, w=0.02)
+    pr = prepare(record_from_arrays(t, x, 2.0))
+    c = find_cycles(pr, 10.0)
+    p = fit_baseline(pr, c, 10.0)
+    assert p.creep1 > 0 and p.creep_m > 4
+
+    def stick(xx):
+        cc = find_cycles(pr_like(pr, xx), 10.0, speeds=False)
+        k = np.flatnonzero(cc.next_ok)
+        return float(np.median(pr.t[cc.peak_i[k + 1]] - pr.t[cc.trough_i[k]]))
+
+    xs = simulate(pr, p, 10.0)[0]
+    assert abs(stick(xs) / stick(pr.x) - 1.0) < 0.03
+    J = Judge(pr, c, 10.0, 0.0, float(pr.t[-1]))
+    dc = J.vector(p)[0]
+    assert abs(float(np.mean(dc[:, 0]))) < 0.015

@@ -16,7 +16,8 @@
 !>          it has peaked); psi at (sg, dg): the decelerating branch's own
 !>          departure from phi (two branches of general shape; 0 in the
 !>          baseline)
-!>   stick: x' = vd(t) (1 - c0 - c1 r**4), r = x / limit (creep),
+!>   stick: x' = vd(t) (1 - c0 - c1 r**m), r = x / limit (creep; m the
+!>          exponent: how close to the limit the creep gathers),
 !>          until |x| > L(t) fs (1 + a ln(1 + ts/tau) + r ln(max(vl, vr)/vr)),
 !>          vl the fastest |vd| of the stick so far (its loading velocity)
 !>   slip -> stick when s <= 0 and |x| <= L(t) fs.
@@ -54,7 +55,7 @@ contains
    end function phi
 
    subroutine slider_run(n, dt, nsub, vd, load, wn, zeta, fs, ns, sg, fg, delta, dg, age_a, age_tau, age_r, age_v, &
-                         kx, xref, creep0, creep1, x0, t0, x, v, state, status)
+                         kx, xref, creep0, creep1, creep_m, x0, t0, x, v, state, status)
       integer, intent(in) :: n                !< number of output samples (>= 2)
       real(wp), intent(in) :: dt              !< output sample interval (s), > 0
       integer, intent(in) :: nsub             !< sub-steps per sample (>= 1)
@@ -75,7 +76,8 @@ contains
       real(wp), intent(in) :: kx              !< load factor per mm of displacement (coupling)
       real(wp), intent(in) :: xref            !< displacement at which the coupling adds nothing (mm)
       real(wp), intent(in) :: creep0          !< relative velocity in stick as a fraction of the drive
-      real(wp), intent(in) :: creep1          !< creep growing as (x / limit)**4 towards the static limit
+      real(wp), intent(in) :: creep1          !< creep growing as (x / limit)**creep_m towards the static limit
+      real(wp), intent(in) :: creep_m         !< that exponent (>= 1; 4 the smooth rise of ch. 2.3.1.1's line)
       real(wp), intent(in) :: x0              !< initial displacement (mm), starts stuck
       real(wp), intent(in) :: t0              !< how long it has been stuck at the start (s, >= 0: the ageing's clock)
       real(wp), intent(out) :: x(n)           !< displacement (mm)
@@ -89,7 +91,8 @@ contains
       status = st_ok
       x = 0.0_wp; v = 0.0_wp; state = 0
       if (n < 2 .or. nsub < 1 .or. ns < 1 .or. .not. (dt > 0.0_wp) .or. .not. (wn > 0.0_wp) &
-          .or. .not. (age_tau > 0.0_wp) .or. .not. (age_v > 0.0_wp) .or. .not. (t0 >= 0.0_wp)) then
+          .or. .not. (age_tau > 0.0_wp) .or. .not. (age_v > 0.0_wp) .or. .not. (t0 >= 0.0_wp) &
+          .or. .not. (creep_m >= 1.0_wp)) then
          status = st_bad_argument
          return
       end if
@@ -123,7 +126,7 @@ contains
                if (creep0 /= 0.0_wp .or. creep1 /= 0.0_wp) then
                   r = 0.0_wp
                   if (lim > 0.0_wp) r = min(max(xs / lim, 0.0_wp), 1.0_wp)
-                  vs_ = vdr * (1.0_wp - creep0 - creep1 * r**4)
+                  vs_ = vdr * (1.0_wp - creep0 - creep1 * r**creep_m)
                end if
                xs = xs + h * vs_
                if (abs(xs) > lim) then

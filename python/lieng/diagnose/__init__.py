@@ -585,7 +585,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         warnings.append(f"only {nrep} baseline replicates could be analysed: the calibration is coarse")
     creep = {"creep_before_slip": {"record": st["creep"], "record_se": se["creep"],
                                    "meaning": "1 - stick velocity in the last fifth of the rise / in its middle",
-                                   "baseline_c0": base.creep0, "baseline_c1": base.creep1}}
+                                   "baseline_c0": base.creep0, "baseline_c1": base.creep1,
+                                   "baseline_m": base.creep_m}}
     gof = {k: {"record": aux["gof"][k],
                                    "replicates_mean": float(np.mean(null[k])) if null[k].size else None,
                                    "replicates_sd": float(np.std(null[k])) if null[k].size > 1 else None}

@@ -5,9 +5,9 @@ The baseline is the 1-DoF model of ch. 2.3: a dynamometer of natural
 frequency fn, a **single-valued characteristic of general shape** phi(s) of
 the sliding velocity s = v0 - x', a static limit FS, the small relative
 velocity in stick of ch. 2.3.1.1 (the stick velocity a fraction
-1 - c0 - c1 r**4 of the drive, r the spring force over the static limit: the
+1 - c0 - c1 r**m of the drive, r the spring force over the static limit: the
 stick branch is a steep line of finite slope, so the slider creeps more as
-the force nears the limit), constant load and drive, started from the record's own state at
+the force nears the limit; m sets how near the limit), constant load and drive, started from the record's own state at
 the start of every stroke.  It is identified from the record:
 
 * phi by the **reverse construction pooled over slips**: during slip the
@@ -15,7 +15,7 @@ the start of every stroke.  It is identified from the record:
   in the Lienard plane, TRC's XX); F is binned by s (quantile bins) and the
   median of each bin is a point of the table (damping cannot be told from
   the slope of phi and is part of it);
-* FS, the median peak; c0 from the slope of x in the sticks;
+* FS, the median peak; c0, c1 and m from the slope of x in the sticks;
 * then the level of phi is moved until the simulated mean trough matches the
   record's (the smoothing of x'' biases the level, not the shape).  Below
   RESOLVED samples per natural period a slip has too few samples for x'':
@@ -38,7 +38,7 @@ import numpy as np
 from lieng import _core
 from lieng.errors import LiengInputError
 from lieng import status as st
-from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_seconds, stick_ratios
+from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_seconds, stick_part, stick_ratios
 
 __all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "model_y", "calibrate_fn"]
 
@@ -60,6 +60,7 @@ class Params:
     zeta: float = 0.0
     creep0: float = 0.0
     creep1: float = 0.0            # creep growing towards the static limit
+    creep_m: float = 4.0           # as (x / limit)**creep_m
     delta: float = 0.0             # twin: decelerating minus accelerating branch (mm)
     dg: np.ndarray | None = None   # twin of general shape: the decelerating branch less fg at sg (mm)
     age_a: float = 0.0             # ageing: FS (1 + a ln(1 + ts/tau))
@@ -193,7 +194,7 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     dg = np.zeros_like(sg) if p.dg is None else np.ascontiguousarray(p.dg, float)
     x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta, dg,
                                             p.age_a, max(p.age_tau, 1e-3 * dt), p.age_r, max(p.age_v, 1e-12),
-                                            p.load_kx, p.load_xref, p.creep0, p.creep1,
+                                            p.load_kx, p.load_xref, p.creep0, p.creep1, p.creep_m,
                                             float(start), max(float(t_stick), 0.0))
     if status != st.OK:
         raise LiengInputError(f"the slider simulation failed ({st.name(status)}): check --fn and the record's units")
@@ -266,29 +267,89 @@ def characteristic(s, F, nbins: int = NBINS):
     return sg[keep], fg[keep]
 
 
+#: the creep's exponents tried (r**m: 4 a rise spread over the stick; 48
+#: creep gathered in the last few per cent before the static limit)
+CREEP_M = (4.0, 6.0, 8.0, 12.0, 16.0, 24.0, 32.0, 48.0)
+
+
 def stick_creep(pr: Prepared, c: Cycles) -> tuple:
-    """The relative velocity in stick (ch. 2.3.1.1): (c0, c1) of the stick
-    velocity vd (1 - c0 - c1 r**4), r = x / limit.  c0 is one minus the median
-    stick slope over the drive in the stick's middle half; c1 from the slope
-    in the last fifth of the rise against the middle (r**4 goes from about
-    0.04 to 0.66 between them); each 0 unless it exceeds three times its
-    scatter."""
+    """The relative velocity in stick (ch. 2.3.1.1): (c0, c1, m) of the stick
+    velocity vd (1 - c0 - c1 r**m), r = x / limit.  c0 is one minus the
+    median stick slope over the drive in the stick's middle half, unless the
+    slope in the last fifth of the rise is below the middle's by more than
+    three times its scatter: then the stick's slope over the drive is read
+    in tenths of its rise from 30 to 97 %, against the mean r**m there as the
+    record's x reads it (r = x over the stick's final peak), and (c0, c1) is
+    the least-squares line through them (weighted by their scatter) for the
+    exponent m of :data:`CREEP_M` that fits best."""
     r = stick_ratios(pr, c, (0.25, 0.75))[1]
     if r.size < 3:
-        return 0.0, 0.0
+        return 0.0, 0.0, 4.0
     c0 = 1.0 - float(np.median(r))
     se = 1.2533 * float(np.std(r)) / math.sqrt(r.size)
     c0 = float(np.clip(c0, 0.0, 0.5)) if abs(c0) > 3 * se else 0.0
     mid, late = creep_pairs(pr, c)
-    c1 = 0.0
-    if mid.size >= 4:
-        d = 1.0 - late / np.where(mid != 0, mid, np.nan)
-        d = d[np.isfinite(d)]
-        if d.size >= 4:
-            m, e = float(np.median(d)), 1.2533 * float(np.std(d)) / math.sqrt(d.size)
-            if m > 3 * e:
-                c1 = float(np.clip(m / 0.62 * (1.0 - c0), 0.0, 0.9))
-    return c0, c1
+    if mid.size < 4:
+        return c0, 0.0, 4.0
+    d = 1.0 - late / np.where(mid != 0, mid, np.nan)
+    d = d[np.isfinite(d)]
+    if d.size < 4:
+        return c0, 0.0, 4.0
+    m, e = float(np.median(d)), 1.2533 * float(np.std(d)) / math.sqrt(d.size)
+    if not m > 3 * e:
+        return c0, 0.0, 4.0
+    edges = np.r_[np.arange(0.3, 0.91, 0.1), 0.97]
+    a, w, rx = [], [], []
+    for part in zip(edges[:-1], edges[1:]):
+        _, ra, k = stick_ratios(pr, c, part, index=True)
+        if ra.size < 3:
+            continue
+        a.append(float(np.median(ra)))
+        w.append(ra.size / max(1.2533 ** 2 * float(np.var(ra)), 1e-12))
+        rx.append([float(np.mean(np.clip(pr.x[stick_part(c, int(j), part)] / pr.x[c.peak_i[j + 1]], 0.0, 1.0)))
+                   if pr.x[c.peak_i[j + 1]] > 0 else np.nan for j in k])
+    if len(a) < 4:
+        return c0, 0.0, 4.0
+    a, sw = np.asarray(a), np.sqrt(np.asarray(w))
+    best = None
+    for mm in CREEP_M:
+        R = np.array([float(np.nanmedian(np.asarray(q) ** mm)) if np.any(np.isfinite(q)) else np.nan for q in rx])
+        ok = np.isfinite(R)
+        if np.count_nonzero(ok) < 4 or np.ptp(R[ok]) < 0.05:
+            continue
+        A = np.column_stack([np.ones(np.count_nonzero(ok)), -R[ok]]) * sw[ok, None]
+        coef, *_ = np.linalg.lstsq(A, (1.0 - a[ok]) * sw[ok], rcond=None)
+        ssr = float(np.sum((A @ coef - (1.0 - a[ok]) * sw[ok]) ** 2))
+        if best is None or ssr < best[0]:
+            best = (ssr, float(coef[0]), -float(coef[1]), mm)
+    if best is None:
+        return c0, 0.0, 4.0
+    _, b0, b1, mm = best
+    if not b1 > 0:
+        return c0, 0.0, 4.0        # (the slopes do not fall towards the limit after all: c0 alone, as read)
+    c0, c1 = float(np.clip(b0, 0.0, 0.5)), float(min(b1, 0.9))
+    # c1 then so that the stick lasts as long as the record's from its trough to the limit (the median stick):
+    # the slopes are read up to 97 % of the rise, and the last few per cent, where the creep is fastest, weigh
+    # most on the stick's duration
+    k = np.flatnonzero(c.next_ok)
+    pk = pr.x[c.peak_i[k + 1]]
+    ok = pk > 0
+    if np.count_nonzero(ok) >= 3:
+        dur = float(np.median((pr.t[c.peak_i[k + 1]] - pr.t[c.trough_i[k]])[ok]))
+        r0 = float(np.clip(np.median(pr.x[c.trough_i[k]][ok] / pk[ok]), 0.0, 0.999))
+        lim, vd = float(np.median(pk[ok])), float(np.mean(pr.vd[c.trough_i[k][0]:c.peak_i[k[-1] + 1]]))
+        q = np.linspace(r0, 1.0, 2001)
+
+        def stick_time(a):
+            return float(np.trapezoid(1.0 / (1.0 - c0 - a * q ** mm), q)) * lim / vd
+
+        lo_, hi_ = 0.0, min(0.98 - c0, 0.95)
+        if vd > 0 and stick_time(lo_) < dur < stick_time(hi_):
+            for _ in range(40):
+                mid_ = 0.5 * (lo_ + hi_)
+                lo_, hi_ = (mid_, hi_) if stick_time(mid_) < dur else (lo_, mid_)
+            c1 = 0.5 * (lo_ + hi_)
+    return c0, c1, mm
 
 
 def trough_mean(pr, c_fn, x):
@@ -343,9 +404,9 @@ def fit_baseline(pr: Prepared, c: Cycles, fn: float, iters: int = 6, loaded=None
     ``loaded``'s channel."""
     load, kw, yfree = loaded if loaded is not None else (None, {}, None)
     sg, fg, fs = identify(pr, c, fn, load=load)
-    c0, c1 = stick_creep(pr, c)
-    p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1, **kw), iters,
-                   yfree)
+    c0, c1, cm = stick_creep(pr, c)
+    p = _fit_level(pr, c, fn, Params(fs=fs, sg=sg, fg=np.minimum(fg, fs), creep0=c0, creep1=c1, creep_m=cm, **kw),
+                   iters, yfree)
     if (c0 or c1) and _cycles_of(pr, p, fn, yfree) < min(3, c.n):
         # a creeping stick that never reaches the static limit is no stick-slip model: the thesis's
         # rigid stick (finite slope only in the sense of ch. 2.3.1.1's steep line) instead

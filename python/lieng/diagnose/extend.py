@@ -159,7 +159,11 @@ def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> flo
     line (fewer than 8 samples), when the record's drive holds or steps by
     more than a factor 2 within it (its 10th percentile there below half
     its 90th: x may relax in a hold) or when its line does not rise with
-    the drive."""
+    the drive.  A model ``p`` whose stick creeps towards the limit (ch.
+    2.3.1.1's c1 r**m) reads its line in its own stick law: x through
+    G(x) = integral of dx / (1 - c0 - c1 (x / peak)**m) against the travel,
+    the level G's inverse of the line's (a straight line when c1 is 0: the
+    same level)."""
     a, b = int(c.trough_i[k]), int(c.peak_i[k + 1])
     seg = stick_part(c, k)
     x0 = float(pr.x[a])
@@ -172,8 +176,17 @@ def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> flo
     X = travel(vd, pr.dt)[seg - a]
     if not np.ptp(X) > 0:
         return x0
-    slope, level = np.polyfit(X, pr.x[seg], 1)
     top = float(pr.x[b])
+    if p is not None and p.creep1 > 0 and top > 0:
+        # the stick read in the model's own law: G(x) rises as the travel does
+        lo_x = min(float(np.min(pr.x[a:b + 1])), 0.0)
+        xg = np.linspace(lo_x, top, 801)
+        ig = 1.0 / np.maximum(1.0 - p.creep0 - p.creep1 * np.clip(xg / top, 0.0, 1.0) ** p.creep_m, 1e-3)
+        g = np.r_[0.0, np.cumsum(0.5 * (ig[1:] + ig[:-1]) * np.diff(xg))]
+        slope, gl = np.polyfit(X, np.interp(pr.x[seg], xg, g), 1)
+        level = float(np.interp(gl, g, xg))
+    else:
+        slope, level = np.polyfit(X, pr.x[seg], 1)
     # a stick line that rises with the drive, its level between the trough and the peak
     if not (slope > 0 and x0 - 0.5 * (top - x0) <= level <= top):
         return x0
@@ -230,6 +243,7 @@ class Judge:
         # each within-stroke prediction starts from the stick line's level at the trough (:func:`stick_start`)
         # (on the record's drive; a model with a modulated drive reads it on its own drive)
         self.start = [stick_start(pr, c, int(j)) for j in k]
+        self._start_cache = {}
         first = np.array([], int)
         if self.from_stroke:
             first = np.array([int(np.flatnonzero(c.stroke == s)[0]) for s in np.unique(c.stroke)], int)
@@ -274,6 +288,15 @@ class Judge:
             ys = pr.y[self.mask]
             self.ysd = float(np.std(ys)) if ys.size > 2 and np.std(ys) > 0 else 1.0
 
+    def _starts(self, p: Params) -> list:
+        """The within-stroke starts read on ``p``'s own drive and stick law
+        (:func:`stick_start`), cached by those parameters."""
+        key = (p.drv_a, p.drv_f, p.drv_ph, p.creep0, p.creep1, p.creep_m)
+        if key not in self._start_cache:
+            self._start_cache[key] = [stick_start(self.pr, self.c, int(j), p) for j in self._k] + \
+                self.start[self._k.size:]
+        return self._start_cache[key]
+
     def vector(self, p: Params, with_y: bool = False):
         """(per-cycle differences (n, 3), waveform differences, normal
         channel term or None) or None; the normal channel's unlocked part is
@@ -285,8 +308,7 @@ class Judge:
         t = pr.t
         pred = np.empty_like(self.rec)
         waves = []
-        starts = self.start if not p.drv_a else \
-            [stick_start(pr, self.c, int(j), p) for j in self._k] + self.start[self._k.size:]
+        starts = self.start if not (p.drv_a or p.creep1) else self._starts(p)
         for row, sl in enumerate(self.slices):
             xs, _, state = run_slice(pr, p, self.fn, sl, starts[row], self.ylow, t_stick=self.rest[row])
             slip = np.flatnonzero(state == 0)

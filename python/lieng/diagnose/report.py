@@ -136,7 +136,8 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
         b = d.baseline
         lines += ["## Baseline (the thesis's 1-DoF model, fitted on the training part)", "",
                   f"* static limit FS = {b.fs:.5g} mm; relative velocity in stick (ch. 2.3.1.1) c0 = {b.creep0:.3g} "
-                  f"of the drive, growing by c1 = {b.creep1:.3g} towards the static limit (creep before slip)",
+                  f"of the drive, growing by c1 = {b.creep1:.3g} as (x / FS)^{b.creep_m:g} towards the static limit "
+                  f"(creep before slip)",
                   "* characteristic phi(s) (sliding velocity mm/s: friction/stiffness mm): " +
                   ", ".join(f"{s:.3g}: {f:.4g}" for s, f in zip(b.sg, b.fg)), ""]
     if plots and d.plot and d.plot.get("pr") is not None:
