@@ -38,7 +38,7 @@ import numpy as np
 from lieng import _core
 from lieng.errors import LiengInputError
 from lieng import status as st
-from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_seconds, stick_part, stick_ratios
+from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_seconds, stick_part, stick_ratios, travel
 
 __all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "model_y", "calibrate_fn"]
 
@@ -328,27 +328,28 @@ def stick_creep(pr: Prepared, c: Cycles) -> tuple:
     if not b1 > 0:
         return c0, 0.0, 4.0        # (the slopes do not fall towards the limit after all: c0 alone, as read)
     c0, c1 = float(np.clip(b0, 0.0, 0.5)), float(min(b1, 0.9))
-    # c1 then so that the stick lasts as long as the record's from its trough to the limit (the median stick):
-    # the slopes are read up to 97 % of the rise, and the last few per cent, where the creep is fastest, weigh
-    # most on the stick's duration
+    # c1 then so that the stick lasts as long as the record's from its trough to the limit (the median stick,
+    # as the drive's travel over it per unit of the limit: a stepped drive's sticks alike): the slopes are read
+    # up to 97 % of the rise, and the last few per cent, where the creep is fastest, weigh most on the stick's
+    # duration.  The model's stick needs the travel lim * integral from r0 to 1 of dr / (1 - c0 - c1 r**m).
     k = np.flatnonzero(c.next_ok)
     pk = pr.x[c.peak_i[k + 1]]
     ok = pk > 0
     if np.count_nonzero(ok) >= 3:
-        dur = float(np.median((pr.t[c.peak_i[k + 1]] - pr.t[c.trough_i[k]])[ok]))
+        track = travel(pr.vd, pr.dt)
+        need = float(np.median(((track[c.peak_i[k + 1]] - track[c.trough_i[k]]) / np.where(ok, pk, 1.0))[ok]))
         r0 = float(np.clip(np.median(pr.x[c.trough_i[k]][ok] / pk[ok]), 0.0, 0.999))
-        lim, vd = float(np.median(pk[ok])), float(np.mean(pr.vd[c.trough_i[k][0]:c.peak_i[k[-1] + 1]]))
         q = np.linspace(r0, 1.0, 2001)
 
-        def stick_time(a):
-            return float(np.trapezoid(1.0 / (1.0 - c0 - a * q ** mm), q)) * lim / vd
+        def stick_travel(c1_):
+            return float(np.trapezoid(1.0 / (1.0 - c0 - c1_ * q ** mm), q))
 
-        lo_, hi_ = 0.0, min(0.98 - c0, 0.95)
-        if vd > 0 and stick_time(lo_) < dur < stick_time(hi_):
+        lo, hi = 0.0, min(0.98 - c0, 0.95)
+        if stick_travel(lo) < need < stick_travel(hi):
             for _ in range(40):
-                mid_ = 0.5 * (lo_ + hi_)
-                lo_, hi_ = (mid_, hi_) if stick_time(mid_) < dur else (lo_, mid_)
-            c1 = 0.5 * (lo_ + hi_)
+                mid_ = 0.5 * (lo + hi)
+                lo, hi = (mid_, hi) if stick_travel(mid_) < need else (lo, mid_)
+            c1 = 0.5 * (lo + hi)
     return c0, c1, mm
 
 
