@@ -281,7 +281,10 @@ def stick_creep(pr: Prepared, c: Cycles) -> tuple:
     in tenths of its rise from 30 to 97 %, against the mean r**m there as the
     record's x reads it (r = x over the stick's final peak), and (c0, c1) is
     the least-squares line through them (weighted by their scatter) for the
-    exponent m of :data:`CREEP_M` that fits best."""
+    exponent m of :data:`CREEP_M` that fits best; c1 is then set so that the
+    model's stick needs the drive travel the record's median stick takes per
+    unit of the limit (its last 3 %, where the creep is fastest, is in no
+    window)."""
     r = stick_ratios(pr, c, (0.25, 0.75))[1]
     if r.size < 3:
         return 0.0, 0.0, 4.0
