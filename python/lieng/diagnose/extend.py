@@ -691,5 +691,8 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
             f2 = cost(c2)
     f = c1 if f1 < f2 else c2
     e1 = min(f1, f2)
-    e_best = cost(1.0)
+    # against the candidate as it came (levelled already): levelled again at factor 1 it can come out worse
+    # (the level's bisection stops anywhere in its last bracket), and the candidate itself must not be lost
+    e_best = judge.error(best, with_y)
+    e_best = e_best if math.isfinite(e_best) else 1e300
     return (make(f), e1) if e1 < e_best else (best, e_best)
