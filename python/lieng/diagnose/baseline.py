@@ -278,8 +278,9 @@ def stick_creep(pr: Prepared, c: Cycles) -> tuple:
     median stick slope over the drive in the stick's middle half, unless the
     slope in the last fifth of the rise is below the middle's by more than
     three times its scatter: then the stick's slope over the drive is read
-    in tenths of its rise from 30 to 97 %, against the mean r**m there as the
-    record's x reads it (r = x over the stick's final peak), and (c0, c1) is
+    in tenths of its rise from 30 to 97 % (the median over the sticks),
+    against the median of (mean r there)**m as the record's x reads it (r = x
+    over the stick's final peak), and (c0, c1) is
     the least-squares line through them (weighted by their scatter) for the
     exponent m of :data:`CREEP_M` that fits best; c1 is then set so that the
     model's stick needs the drive travel the record's median stick takes per

@@ -182,7 +182,7 @@ def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> flo
         lo_x = min(float(np.min(pr.x[a:b + 1])), 0.0)
         xg = np.linspace(lo_x, top, 801)
         ig = 1.0 / np.maximum(1.0 - p.creep0 - p.creep1 * np.clip(xg / top, 0.0, 1.0) ** p.creep_m, 1e-3)
-        g = np.r_[0.0, np.cumsum(0.5 * (ig[1:] + ig[:-1]) * np.diff(xg))]
+        g = travel(ig, np.diff(xg))          # (the cumulative trapezoid of 1 / the stick law over x)
         slope, gl = np.polyfit(X, np.interp(pr.x[seg], xg, g), 1)
         level = float(np.interp(gl, g, xg))
     else:
