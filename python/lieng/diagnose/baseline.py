@@ -70,6 +70,8 @@ class Params:
     load_k: float = 0.0            # exogenous: load = 1 + load_k * (ylow - mean), ylow measured
     load_kx: float = 0.0           # coupled: load += load_kx * (x - load_xref)
     load_xref: float = 0.0
+    load_lock: float = 0.0         # the measured channel's part locked to x (ylow per mm): taken out of
+                                   # the played-back channel, its load following the model's x (load_kx)
     trig_eps: float = 0.0          # load *= 1 + eps sin(2 pi f t + ph)
     trig_f: float = 0.0
     trig_ph: float = 0.0
@@ -183,7 +185,7 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     vdd = model_drive(pr, p, sl)
     load = np.ones_like(t)
     if p.load_k and ylow is not None:
-        load = load + p.load_k * (ylow[sl] - np.mean(ylow))
+        load = load + p.load_k * (ylow[sl] - np.mean(ylow) - p.load_lock * (pr.x[sl] - p.load_xref))
     if p.trig_eps:
         load = load * (1.0 + p.trig_eps * _sin(t, p.trig_f, p.trig_ph))
     if p.drift:
@@ -425,15 +427,23 @@ def under_load(pr: Prepared, c: Cycles, ylow) -> tuple:
     load N / its mean): the part of N locked to x (:func:`.signals.y_on_motion`)
     as a coupling that follows the *simulated* x (``load_kx``; played back in
     time it would part from a simulated slip that runs early or late), the
-    rest played back in time.  Returns (the record's load factor at every
+    rest played back in time (``load_lock``: that part is taken out of the
+    channel played back).  Returns (the record's load factor at every
     sample, the Params terms, the channel to simulate with)."""
+    m = float(np.mean(ylow))
+    kw = locked_load(pr, c, ylow, 1.0 / m)
+    return np.maximum(ylow / m, 0.05), kw, ylow
+
+
+def locked_load(pr: Prepared, c: Cycles, ylow, k: float) -> dict:
+    """The Params terms of a load 1 + k (ylow - its mean) whose part locked
+    to x (:func:`.signals.y_on_motion`) follows the model's own x: the
+    coupling ``load_kx`` = k c1, ``load_lock`` = c1 (taken out of the channel
+    played back), about the record's mean x."""
     from lieng.diagnose.signals import y_on_motion
 
-    m = float(np.mean(ylow))
     _, c1, _ = y_on_motion(pr.x, c.v, ylow)
-    xref = float(np.mean(pr.x))
-    kw = {"load_k": 1.0 / m, "load_kx": c1 / m, "load_xref": xref}
-    return np.maximum(ylow / m, 0.05), kw, ylow - c1 * (pr.x - xref)
+    return {"load_k": k, "load_kx": k * c1, "load_xref": float(np.mean(pr.x)), "load_lock": c1}
 
 
 def _cycles_of(pr, p, fn, ylow=None) -> int:
@@ -445,33 +455,57 @@ def _cycles_of(pr, p, fn, ylow=None) -> int:
 
 def _fit_level(pr, c, fn, p, iters, ylow=None):
     """Move the level of phi until the simulated mean trough matches the record's."""
-    fg = p.fg.copy()
-    fs = p.fs
     target = float(np.mean(pr.x[c.trough_i]))
-    # move the level of phi until the simulated mean trough matches
-    lo_off, hi_off = None, None
-    off = 0.0
     d0 = float(np.ptp(pr.x[c.peak_i]) + np.median(c.drops(pr.x)))
-    step = 0.1 * max(d0, 1e-9)
+    return level_to_trough(p, lambda q: trough_mean(pr, fn, simulate(pr, q, fn, ylow)[0]), target, iters,
+                           0.1 * max(d0, 1e-9))
+
+
+#: the simulated trough rises about twice as fast as the characteristic's
+#: level (a free half-oscillation about it: trough = 2 level - peak), the
+#: first step of :func:`level_to_trough`
+TROUGH_PER_LEVEL = 2.0
+
+
+def level_to_trough(p: Params, trough_of, target: float, iters: int, step: float) -> Params:
+    """Move the level of ``p``'s characteristic (an offset added to fg, kept
+    below the static limit) until ``trough_of`` (the simulated mean trough
+    of a model, None when it does not slip) matches ``target``: a secant
+    search on the offset from 0, its first step at TROUGH_PER_LEVEL,
+    bisection within the bracket found when a step would leave it, an
+    expanding ``step`` downwards while no model slips.  ``p`` is left at
+    the offset whose simulated trough came nearest the target among those
+    simulated (so that the model returned is one whose trough was
+    measured, not an untried midpoint) and returned."""
+    fg0, fs = p.fg.copy(), p.fs
+    lo = hi = None
+    seen = []                                   # (offset, trough) of the models that slipped
+    off, best = 0.0, (math.inf, 0.0)
     for _ in range(iters):
-        q = p.copy(fg=np.minimum(fg + off, fs))
-        xs, _, _ = simulate(pr, q, fn, ylow)
-        tr = trough_mean(pr, fn, xs)
-        if tr is None:                 # no slip: the kinetic level is too high
-            hi_off = off
-        elif tr > target:
-            hi_off = off
+        tried = off
+        tr = trough_of(p.copy(fg=np.minimum(fg0 + off, fs)))
+        if tr is None or tr > target:          # (no slip: the kinetic level is too high)
+            hi = off if hi is None else min(hi, off)
         else:
-            lo_off = off
-        if lo_off is not None and hi_off is not None:
-            off = 0.5 * (lo_off + hi_off)
-        elif lo_off is None:
-            off -= step
-            step *= 2
+            lo = off if lo is None else max(lo, off)
+        if tr is None:
+            nxt = off - step
+            step *= 2.0
         else:
-            off += step
-            step *= 2
-    p.fg = np.minimum(fg + off, fs)
+            best = min(best, (abs(tr - target), off))
+            seen.append((off, tr))
+            (o1, t1) = seen[-1]
+            slope = TROUGH_PER_LEVEL
+            if len(seen) >= 2:
+                o0, t0 = seen[-2]
+                if o1 != o0 and (t1 - t0) / (o1 - o0) > 0.1 * TROUGH_PER_LEVEL:
+                    slope = (t1 - t0) / (o1 - o0)
+            nxt = o1 + (target - t1) / slope
+        if lo is not None and hi is not None and not lo < nxt < hi:
+            nxt = 0.5 * (lo + hi)
+        off = nxt
+    # (no model slipped: the lowest level tried)
+    p.fg = np.minimum(fg0 + (best[1] if seen else tried), fs)
     return p
 
 

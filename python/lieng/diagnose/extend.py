@@ -53,8 +53,8 @@ import math
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.baseline import (Params, characteristic, identify, model_drive, model_y, pr_like, run_slice,
-                                     simulate, slip_friction)
+from lieng.diagnose.baseline import (Params, characteristic, identify, level_to_trough, locked_load, model_drive,
+                                     model_y, pr_like, run_slice, simulate, slip_friction)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
@@ -352,27 +352,19 @@ class Judge:
 
 def _fit_level(pr, p: Params, fn, target, tr_mask, ylow=None, it=5):
     """Move the characteristic's level so that the simulated mean trough on
-    the training part matches ``target``."""
+    the training part matches ``target`` (:func:`.baseline.level_to_trough`)."""
     D = float(np.ptp(p.fg)) + 0.2 * abs(p.fs - float(np.mean(p.fg))) + 1e-9
-    lo, hi = -D, D
-    fg0 = p.fg.copy()
-    off = 0.0
-    for _ in range(it):
-        q = p.copy(fg=np.minimum(fg0 + off, p.fs))
+
+    def trough_of(q):
         xs, _, _ = simulate(pr, q, fn, ylow)
         try:
             cc = find_cycles(pr_like(pr, xs), fn, speeds=False)
-            m = tr_mask[cc.trough_i] if cc.n else np.array([], bool)
-            trv = float(np.mean(xs[cc.trough_i][m])) if np.any(m) else p.fs
         except LiengInputError:
-            trv = p.fs
-        if trv > target:
-            hi = off
-        else:
-            lo = off
-        off = 0.5 * (lo + hi)
-    p.fg = np.minimum(fg0 + off, p.fs)
-    return p
+            return None
+        m = tr_mask[cc.trough_i] if cc.n else np.array([], bool)
+        return float(np.mean(xs[cc.trough_i][m])) if np.any(m) else None
+
+    return level_to_trough(p, trough_of, target, it, 0.25 * D)
 
 
 def _per_load(base: Params, pr: Prepared, c: Cycles, fn: float, load, sel, **kw) -> list:
@@ -457,6 +449,12 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 if np.all(ld[c.peak_i[ctr_sel]] > 0.05):
                     out += [lvl(q, ylow=ylow) for q in _per_load(base, pr, c, fn, np.maximum(ld, 0.05), ctr_sel,
                                                                  load_k=k)]
+                    # the same load with its part locked to x following the model's own x (played back in
+                    # time, a load locked to the record's slips would arrest a model's slip that runs early)
+                    lk = locked_load(pr, c, ylow, k)
+                    if lk["load_lock"]:
+                        out += [lvl(q, ylow=ylow) for q in _per_load(base, pr, c, fn, np.maximum(ld, 0.05),
+                                                                     ctr_sel, **lk)]
                 if base.y_c[1]:
                     kx, xref = k * base.y_c[1], float(np.mean(pr.x))
                     ld = 1.0 + kx * (pr.x - xref)
@@ -691,8 +689,9 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
             f2 = cost(c2)
     f = c1 if f1 < f2 else c2
     e1 = min(f1, f2)
-    # against the candidate as it came (levelled already): levelled again at factor 1 it can come out worse
-    # (the level's bisection stops anywhere in its last bracket), and the candidate itself must not be lost
+    # against the candidate as it came (levelled already): levelled again at factor 1 it may come out
+    # elsewhere (the level's search ends at the best level it simulated, which need not be the one the
+    # candidate came with), and the candidate itself must not be lost
     e_best = judge.error(best, with_y)
     e_best = e_best if math.isfinite(e_best) else 1e300
     return (make(f), e1) if e1 < e_best else (best, e_best)
