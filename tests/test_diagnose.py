@@ -1888,6 +1888,17 @@ def test_a_creeping_stick_through_holds_lasts_the_records_travel():
     assert abs(need(simulate(pr, p, 10.0)[0]) / need(pr.x) - 1.0) < 0.02
 
 
+def _coulomb_baseline(fn=10.0):
+    """The unmodulated Coulomb slider of :func:`_forced_coulomb` (plain
+    NumPy), prepared: (record, cycles, fitted baseline, drop, fn)."""
+    from lieng.diagnose.baseline import fit_baseline
+    from lieng.diagnose.segment import find_cycles, prepare
+    t, x, _ = _forced_coulomb(0.0, fn=fn)
+    pr = prepare(record_from_arrays(t, x, 2.0))
+    c = find_cycles(pr, fn)
+    return pr, c, fit_baseline(pr, c, fn), c.amplitude(pr.x), fn
+
+
 def test_refining_an_extension_returns_its_own_error_and_never_loses_the_candidate(monkeypatch):
     """``extend.refine`` scales the extension's term on the training error,
     levelling each scaled model again, and keeps the candidate when no
@@ -1898,14 +1909,7 @@ def test_refining_an_extension_returns_its_own_error_and_never_loses_the_candida
     load whose training error was 0.0136 came back with 0.0188, the
     baseline's, and was dropped.)  Here every levelling lands 0.05 D high."""
     import lieng.diagnose.extend as ext_mod
-    from lieng.diagnose.baseline import fit_baseline
-    from lieng.diagnose.segment import find_cycles, prepare
-    t, x, _ = _forced_coulomb(0.0)
-    fn = 10.0
-    pr = prepare(record_from_arrays(t, x, 2.0))
-    c = find_cycles(pr, fn)
-    base = fit_baseline(pr, c, fn)
-    D = c.amplitude(pr.x)
+    pr, c, base, D, fn = _coulomb_baseline()
     monkeypatch.setattr(ext_mod, "_fit_level", lambda pr_, q, *a, **k: q.copy(fg=q.fg + 0.05 * D))
     cand = base.copy(delta=0.01 * D)
     J = ext_mod.Judge(pr, c, fn, float(pr.t[0]), float(pr.t[-1]) + 1.0)
@@ -1922,15 +1926,10 @@ def test_the_level_fit_lands_on_the_records_trough_and_stays_there():
     replaces ended at the midpoint of its last bracket, a level it had not
     simulated: 0.3-0.5 % of the drop off, and 0.4 % away when levelled
     again: a candidate came back with another model's error.)"""
-    from lieng.diagnose.baseline import fit_baseline, pr_like, simulate
+    from lieng.diagnose.baseline import pr_like, simulate
     from lieng.diagnose.extend import _fit_level
-    from lieng.diagnose.segment import find_cycles, prepare
-    t, x, _ = _forced_coulomb(0.0)
-    fn = 10.0
-    pr = prepare(record_from_arrays(t, x, 2.0))
-    c = find_cycles(pr, fn)
-    base = fit_baseline(pr, c, fn)
-    D = c.amplitude(pr.x)
+    from lieng.diagnose.segment import find_cycles
+    pr, c, base, D, fn = _coulomb_baseline()
     target = float(np.mean(pr.x[c.trough_i]))
     every = np.ones(pr.t.size, bool)
 
