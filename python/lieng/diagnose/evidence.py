@@ -92,7 +92,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.special import fdtrc
+from scipy.special import fdtrc, ndtr
 
 from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
@@ -383,7 +383,18 @@ def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
     jit = float(np.std(per) / np.mean(per)) if per.size >= 3 else 0.0
     if y is not None:
         sig = y - y_locked(pr.x, c.v, y, directions(pr))[0]
-        f, a, snr = spectral_line(sig, pr.dt, 2.0 * fn)
+        # a line is a forcing of the load only if the channel shows it while the slider sticks as while it
+        # slips; one the slips drive (a normal mode they ring, a load that follows the motion otherwise than
+        # in proportion) is the motion's: it is passed over, and once one is, the stick-slip's harmonics too
+        # (a forcing on a harmonic, triggered slips locked to it, is the same in the sticks and is kept)
+        passed = []
+        for _ in range(SLIP_DRIVEN_TRIES):
+            f, a, snr = spectral_line(sig, pr.dt, 2.0 * fn, f0 if passed else None, jitter=jit, exclude=passed)
+            if not (f > 0 and slip_driven(pr, c, sig, f)):
+                break
+            passed.append(f)
+        else:
+            f, a, snr = spectral_line(sig, pr.dt, 2.0 * fn, f0, jitter=jit, exclude=passed)
         scale = abs(float(np.mean(y))) if y_is_force else D
     else:
         sig = pr.x
@@ -394,6 +405,42 @@ def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
     # standard error of a line amplitude in noise: the spectrum beside it
     se = a / snr if snr > 0 else math.inf
     return a / scale, se / scale, f, sig
+
+
+#: the level of the test that a line in the normal channel is driven by the
+#: slips (:func:`slip_driven`): a line the channel shows in the sticks at
+#: SLIP_DRIVEN_SHARE of its amplitude in the slips is taken for a driven one
+#: in this fraction of records
+SLIP_DRIVEN_ALPHA = 0.01
+#: a forcing of the load from outside shows in the sticks at least at this
+#: share of its amplitude in the slips (stated a priori: the same amplitude,
+#: less what a slip's transient leaves in the line's reading)
+SLIP_DRIVEN_SHARE = 0.5
+#: at most this many lines the slips drive are passed over in the normal channel
+SLIP_DRIVEN_TRIES = 4
+
+
+def slip_driven(pr: Prepared, c: Cycles, sig, f: float) -> bool:
+    """Whether the line at ``f`` in the normal channel ``sig`` (less its
+    part locked to the motion) is driven by the slips: its vector in the
+    sticks' middles, along its vector in the slips, is below
+    SLIP_DRIVEN_SHARE of the slips' amplitude (:func:`slip_stick_lines`,
+    each unit's quadratic projected out; one-sided at SLIP_DRIVEN_ALPHA,
+    cluster-robust).  A forcing of the load from outside the slider (a
+    shaker, an unbalanced motor) is the same whether the slider sticks or
+    slips; one the slips excite (a normal mode they ring) dies away in the
+    sticks."""
+    lines = slip_stick_lines(pr, c, sig, f, _stick_cols, _stick_cols)
+    if lines is None:
+        return False
+    (b_slip, v_slip, n), (b_stick, v_stick, m) = lines
+    amp = float(np.hypot(*b_slip))
+    if not (amp > 0 and m >= 3 and np.all(np.isfinite(v_slip)) and np.all(np.isfinite(v_stick))):
+        return False
+    u = b_slip / amp
+    gap = SLIP_DRIVEN_SHARE * amp - float(u @ b_stick)
+    sd = math.sqrt(max(SLIP_DRIVEN_SHARE ** 2 * float(u @ v_slip @ u) + float(u @ v_stick @ u), 0.0))
+    return gap > 0 and (sd == 0 or float(ndtr(-gap / sd)) < SLIP_DRIVEN_ALPHA)
 
 
 def force_modulation(pr: Prepared, sig, f: float, mean: float):
@@ -413,21 +460,77 @@ def force_modulation(pr: Prepared, sig, f: float, mean: float):
     return est(np.ones(10, bool)), _jackknife(est, 10)
 
 
-def _line_normal(pr: Prepared, seg, w: float, nuisance):
-    """The normal equations of a line sin/cos(w t) in x over the samples
-    ``seg``, with the columns ``nuisance(tau)`` (tau the time from the first
-    sample) projected out: (2x2, 2)."""
+def _line_normal(pr: Prepared, sig, seg, w: float, nuisance):
+    """The normal equations of a line sin/cos(w t) in ``sig`` over the
+    samples ``seg``, with the columns ``nuisance(tau)`` (tau the time from
+    the first sample) projected out: (2x2, 2)."""
     t = pr.t[seg]
     Q, _ = np.linalg.qr(nuisance(t - t[0]))
     S = np.column_stack([np.sin(w * t), np.cos(w * t)])
     S = S - Q @ (Q.T @ S)
-    xx = pr.x[seg] - Q @ (Q.T @ pr.x[seg])
+    xx = sig[seg] - Q @ (Q.T @ sig[seg])
     return S.T @ S, S.T @ xx
 
 
 #: the triggering size reads at most this many slips and sticks (an even
 #: subset, at a fixed cost on long records)
 TRIG_UNITS = 400
+
+
+def _scaled(tau):
+    return tau / max(float(tau[-1]), 1e-12)
+
+
+def slip_stick_lines(pr: Prepared, c: Cycles, sig, f: float, slip_cols, stick_cols):
+    """The line at ``f`` in ``sig`` pooled over the slips (peak to trough,
+    the columns ``slip_cols(tau)`` projected out of each) and over the
+    sticks' middles (:func:`.segment.stick_part`, ``stick_cols(tau)``),
+    each with its covariance, robust to any noise within a unit (each slip
+    or stick a cluster: the sandwich A^-1 (sum s s') A^-1, s = b - a beta,
+    times n / (n - 1)): ((beta, cov, n) of the slips, of the sticks); None
+    when fewer than five slips.  The sticks' is zero with the slips' count
+    when fewer than three sticks."""
+    w = 2 * math.pi * f
+    units = {"slip": [], "stick": []}
+    ks = range(c.n) if c.n <= TRIG_UNITS else np.unique(np.linspace(0, c.n - 1, TRIG_UNITS).astype(int))
+    for k in ks:
+        seg = np.arange(int(c.peak_i[k]), int(c.trough_i[k]) + 1)
+        if seg.size >= 5:
+            units["slip"].append(_line_normal(pr, sig, seg, w, slip_cols))
+        if k + 1 < c.n and c.next_ok[k]:
+            seg = stick_part(c, k)
+            if seg.size >= 6:
+                units["stick"].append(_line_normal(pr, sig, seg, w, stick_cols))
+    if len(units["slip"]) < 5:
+        return None
+
+    def line(which):
+        a = np.array([u[0] for u in units[which]])
+        b = np.array([u[1] for u in units[which]])
+        A = a.sum(axis=0)
+        if not np.linalg.cond(A) < 1e8:
+            return np.zeros(2), np.full((2, 2), np.inf), 0
+        beta = np.linalg.solve(A, b.sum(axis=0))
+        sc = b - a @ beta
+        Ai = np.linalg.inv(A)
+        n = len(a)
+        return beta, Ai @ (sc.T @ sc) @ Ai * n / max(n - 1, 1), n
+
+    slip = line("slip")
+    stick = line("stick") if len(units["stick"]) >= 3 else (np.zeros(2), np.zeros((2, 2)), slip[2])
+    return slip, stick
+
+
+def hotelling_p(d, cov, dof: int) -> float:
+    """The p-value of Hotelling's test that the 2-vector ``d`` (covariance
+    ``cov``) is 0, T**2 referred to F(2, dof) (1 when it cannot be read)."""
+    if dof < 2 or not np.all(np.isfinite(cov)):
+        return 1.0
+    try:
+        t2 = float(d @ np.linalg.solve(cov, d))
+    except np.linalg.LinAlgError:
+        return 1.0
+    return float(fdtrc(2, dof, dof / (2.0 * (dof + 1)) * t2)) if math.isfinite(t2) else 1.0
 
 
 def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
@@ -442,69 +545,37 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     reverse construction in the slips).  Returns (epsilon, its standard
     error, the p-value of Hotelling's test that the slip-less-stick vector
     is 0, i.e. that the line is not in the friction).  The covariance is the
-    cluster-robust sandwich with each slip and each stick a cluster (any
-    noise within a unit, white or not; a slow wander does not reach a line
-    at f >> the stick-slip rate), T**2 referred to F(2, n - 2).  (0, inf, 1)
-    when too few slips."""
+    cluster-robust sandwich with each slip and each stick a cluster
+    (:func:`slip_stick_lines`: any noise within a unit, white or not; a slow
+    wander does not reach a line at f >> the stick-slip rate), T**2 referred
+    to F(2, n - 2).  (0, inf, 1) when too few slips."""
     if not (f > 0 and c.n >= 5):
         return 0.0, math.inf, 1.0
-    w, wn = 2 * math.pi * f, 2 * math.pi * fn
-
-    def scaled(tau):
-        return tau / max(float(tau[-1]), 1e-12)
-
+    wn = 2 * math.pi * fn
     # a slip's own arc (a coarsely sampled slip, under 8 samples: without the trend); a quadratic in tau
     # beside it read the independent generators' sizes closer to their stated 3-8 % but cost the line's
     # test power on `lieng synth` (two of six records' p from 0.002 to 0.015), so it is not used
     slip_cols = lambda tau: np.column_stack([np.ones(tau.size), np.cos(wn * tau), np.sin(wn * tau)]
-                                            + ([scaled(tau)] if tau.size >= 8 else []))
-    stick_cols = lambda tau: np.column_stack([np.ones(tau.size), scaled(tau), scaled(tau) ** 2])
-    units = {"slip": [], "stick": []}
-    ks = range(c.n) if c.n <= TRIG_UNITS else np.unique(np.linspace(0, c.n - 1, TRIG_UNITS).astype(int))
-    for k in ks:
-        seg = np.arange(int(c.peak_i[k]), int(c.trough_i[k]) + 1)
-        if seg.size >= 5:
-            units["slip"].append(_line_normal(pr, seg, w, slip_cols))
-        if k + 1 < c.n and c.next_ok[k]:
-            seg = stick_part(c, k)
-            if seg.size >= 6:
-                units["stick"].append(_line_normal(pr, seg, w, stick_cols))
-    if len(units["slip"]) < 5:
+                                            + ([_scaled(tau)] if tau.size >= 8 else []))
+    lines = slip_stick_lines(pr, c, pr.x, f, slip_cols, _stick_cols)
+    if lines is None:
         return 0.0, math.inf, 1.0
+    (b_slip, v_slip, n), (b_stick, v_stick, m) = lines
     _, _, F, _, _ = slip_friction(pr, c, fn)
     level = float(np.median(F)) if F.size else 0.0
     level = level if level > 0 else D
     gain = abs(1.0 - (f / fn) ** 2) / level
-
-    def line(which):
-        """The pooled line over the units and its covariance, robust to any noise within a unit (each
-        slip or stick a cluster: the sandwich A^-1 (sum s s') A^-1, s = b - a beta, times n / (n - 1))."""
-        a = np.array([u[0] for u in units[which]])
-        b = np.array([u[1] for u in units[which]])
-        A = a.sum(axis=0)
-        if not np.linalg.cond(A) < 1e8:
-            return np.zeros(2), np.full((2, 2), np.inf), 0
-        beta = np.linalg.solve(A, b.sum(axis=0))
-        sc = b - a @ beta
-        Ai = np.linalg.inv(A)
-        n = len(a)
-        return beta, Ai @ (sc.T @ sc) @ Ai * n / max(n - 1, 1), n
-
-    b_slip, v_slip, n = line("slip")
-    b_stick, v_stick, m = line("stick") if len(units["stick"]) >= 3 else (np.zeros(2), np.zeros((2, 2)), n)
     d = (b_slip - b_stick) * gain
     cov = (v_slip + v_stick) * gain ** 2
     eps = float(np.hypot(*d))
     u = d / eps if eps > 0 else np.array([1.0, 0.0])
-    dof = min(n, m) - 2
-    p = 1.0
-    if dof >= 2 and np.all(np.isfinite(cov)):
-        try:
-            t2 = float(d @ np.linalg.solve(cov, d))
-            p = float(fdtrc(2, dof, dof / (2.0 * (dof + 1)) * t2)) if math.isfinite(t2) else 1.0
-        except np.linalg.LinAlgError:
-            p = 1.0
+    p = hotelling_p(d, cov, min(n, m) - 2)
     return eps, float(math.sqrt(max(float(u @ cov @ u), 0.0))), p
+
+
+def _stick_cols(tau):
+    """A stick's own course, projected out of a line read in it: a quadratic in tau."""
+    return np.column_stack([np.ones(tau.size), _scaled(tau), _scaled(tau) ** 2])
 
 
 def _stick_series(pr: Prepared, c: Cycles):

@@ -43,11 +43,12 @@ def _jackknife(values_fn, n_units, groups=10):
     return float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
 
 
-def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float = 0.0):
+def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float = 0.0, exclude=()):
     """The strongest line above fmin and, with f0, off the harmonics of f0
     (by more than two bins, and by more than ``jitter`` times the harmonic's
     frequency, at most a fifth of f0: a stick-slip whose period wanders by a
-    relative ``jitter`` spreads its h-th harmonic over h times that):
+    relative ``jitter`` spreads its h-th harmonic over h times that), and
+    off the frequencies ``exclude`` (by more than three bins, as mains hum):
     (frequency, amplitude, local signal-to-noise of the line), from a
     Hann-windowed FFT.  ``by="snr"``: the line that stands
     highest above its neighbourhood (the mean amplitude 4 to 30 bins either
@@ -63,6 +64,8 @@ def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float =
     for base in (50.0, 60.0):                      # mains hum is not physics
         for h in range(1, 8):
             ok &= np.abs(f - base * h) > 3.0 / (n * dt)
+    for fx in exclude:
+        ok &= np.abs(f - fx) > 3.0 / (n * dt)
     if f0 is not None and f0 > 0:
         h = np.round(f / f0)
         ok &= np.abs(f / f0 - h) * f0 > np.maximum(2.0 / (n * dt), np.minimum(jitter * h * f0, 0.2 * f0))
