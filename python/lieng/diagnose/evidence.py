@@ -46,10 +46,12 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     over D, one-sided (the peak grows with the stick time).  Needs stick
     times that vary.
 ``triggering``
-    The strongest spectral line above 2 fn that is not a harmonic of the
-    stick-slip, in the normal channel less its part locked to the motion (or
-    in x: the line that stands highest above its neighbours, since the
-    slider's response falls as 1 / (f / fn)**2): its amplitude over the mean
+    The strongest spectral line above 2 fn in the normal channel less its
+    part locked to the motion that the channel shows in the sticks as in the
+    slips (a line the slips drive, a normal mode they ring, is passed over,
+    and then the stick-slip's harmonics too: :func:`slip_driven`); or in x,
+    off the stick-slip's harmonics, the line that stands highest above its
+    neighbours (the slider's response falls as 1 / (f / fn)**2): its amplitude over the mean
     normal force (a force channel: the load modulation), or over D; this
     statistic is what the replicates calibrate.  Its effect size is the load
     modulation itself: a normal force's relative line, or otherwise the one
