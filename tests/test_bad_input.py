@@ -452,3 +452,22 @@ def test_coarse_reciprocating_sliding_prints_no_nan(tmp_path, capsys):
     finite_outputs(tmp_path / "o", stdout)
     assert "nan" not in stdout.lower() and "nan" not in (tmp_path / "o" / "report.md").read_text().lower()
     assert "at a level of 1.22 mm" in stdout and "its sign was turned" not in stdout
+
+
+def test_a_record_written_last_sample_first_is_refused_saying_so(tmp_path, capsys):
+    """A record whose time column runs backwards (written last sample first)
+    is refused with one line that says the rows must be in time order (it
+    was read as 10 000 runs appended to one file, each one sample long:
+    "1 samples in the longest run"); runs appended to one file, the clock
+    starting again, are still read (the longest)."""
+    t = np.arange(2000) / 1000.0
+    x = (t * 2.0) % 1.0
+    p = tmp_path / "backwards.csv"
+    p.write_text("time [s],x [mm]\n" + "".join(f"{a:.4f},{b:.5f}\n" for a, b in zip(t[::-1], x[::-1])))
+    code, _, err = run(["diagnose", p, "--v0", "2", "-o", tmp_path / "o"], capsys)
+    one_line_error(code, err, "time order")
+    assert not (tmp_path / "o").exists()
+    from lieng.diagnose import read_record
+    q = tmp_path / "appended.csv"
+    q.write_text("time [s],x [mm]\n" + "".join(f"{a:.4f},{b:.5f}\n" for a, b in zip(np.r_[t[:300], t], np.r_[x[:300], x])))
+    assert read_record(q, v0=2.0).t.size == t.size

@@ -402,6 +402,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     bad = np.flatnonzero(d <= 0)
     restart = bad[t[bad + 1] <= t[0]] if bad.size else bad
     runs_note = None
+    if restart.size and restart.size >= 0.5 * (n - 1):
+        # most steps go back: a record written last sample first, not runs appended to one file
+        _fail(f"{path}: column {cols['t'][0]}: the time goes back at {restart.size} of the {n - 1} steps from "
+              f"line {tab.lines[0]} on: the rows must be in time order (sort them by time)")
     if restart.size and restart.size == bad.size:
         # the clock starts again: runs appended to one file; the longest is analysed
         edges = np.r_[0, restart + 1, n]
