@@ -493,14 +493,13 @@ def level_to_trough(p: Params, trough_of, target: float, iters: int, step: float
             step *= 2.0
         else:
             best = min(best, (abs(tr - target), off))
-            seen.append((off, tr))
-            (o1, t1) = seen[-1]
             slope = TROUGH_PER_LEVEL
-            if len(seen) >= 2:
-                o0, t0 = seen[-2]
-                if o1 != o0 and (t1 - t0) / (o1 - o0) > 0.1 * TROUGH_PER_LEVEL:
-                    slope = (t1 - t0) / (o1 - o0)
-            nxt = o1 + (target - t1) / slope
+            if seen:
+                o0, t0 = seen[-1]
+                if off != o0 and (tr - t0) / (off - o0) > 0.1 * TROUGH_PER_LEVEL:
+                    slope = (tr - t0) / (off - o0)
+            seen.append((off, tr))
+            nxt = off + (target - tr) / slope
         if lo is not None and hi is not None and not lo < nxt < hi:
             nxt = 0.5 * (lo + hi)
         off = nxt

@@ -61,10 +61,8 @@ def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float =
     f = np.fft.rfftfreq(n, dt)
     amp = 2 * np.abs(S) / w.sum()
     ok = (f > fmin) & (f < 0.49 / dt)
-    for base in (50.0, 60.0):                      # mains hum is not physics
-        for h in range(1, 8):
-            ok &= np.abs(f - base * h) > 3.0 / (n * dt)
-    for fx in exclude:
+    hum = [base * h for base in (50.0, 60.0) for h in range(1, 8)]       # mains hum is not physics
+    for fx in (*hum, *exclude):
         ok &= np.abs(f - fx) > 3.0 / (n * dt)
     if f0 is not None and f0 > 0:
         h = np.round(f / f0)
