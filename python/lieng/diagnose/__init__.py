@@ -44,6 +44,9 @@ FN_UNCERTAINTY = 0.05
 FN_UNCERTAINTY_DURATION = 0.15
 #: a --fn further than this from the slips' estimate is questioned
 FN_CHECK = 0.20
+#: slips whose own frequency (their arcs', or the fn at which the baseline's last as long) is this far off
+#: the given fn are not arcs of a free oscillation at it (the twin-branch evidence is withheld when faster)
+SLIPS_OFF = 0.25
 #: fewer baseline replicates than this calibrate nothing (:func:`.decide.decide` reads a candidate on
 #: five or more): the answer is then `unexplained`, never `none`
 MIN_REPLICATES = 5
@@ -380,7 +383,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         warnings.append(nofn + f" (the slip-shape evidence, {', '.join(shape_evidence)}, is withheld)")
     # (slips that fit no single arc frequency, with fn given, are read as they are: the evidence
     # assumes no arc shape, and the replicates carry what the shape does to it)
-    if not withheld and nsl >= 3 and fd is not None and abs(fd / fn_used - 1.0) > 0.25:
+    if not withheld and nsl >= 3 and fd is not None and abs(fd / fn_used - 1.0) > SLIPS_OFF:
         # Slips that swing faster than fn say that fn is given too low, and the reverse construction at too
         # low an fn parts its branches exactly like a twin branch (F = x + x''/wn**2 overweights x''): the
         # twin evidence is withheld.  Slips that swing slower are what a twin branch itself does (friction
@@ -397,6 +400,15 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             warnings.append(why + " (check --fn): slower, as a friction that grows through each slip (a twin "
                                   "branch) or a load that follows the motion makes them; the twin-branch evidence "
                                   "is read by the reverse construction at fn")
+    if not withheld and fn is not None and fcal is not None and fcal / fn_used - 1.0 > SLIPS_OFF:
+        # the same reading by the slips' duration rather than their arcs' frequency: the baseline's slips at
+        # the given fn outlast the record's as a baseline at a higher fn would not (a load that stiffens the
+        # slider as it moves, or fn given too low); a twin branch makes slips longer, not shorter
+        why = (f"the slips last as long as the baseline's at fn = {fcal:.4g} Hz, {100 * (fcal / fn_used - 1):.0f} % "
+               f"above fn = {fn_used:.4g} Hz")
+        withheld = {"twin_branch": why}
+        warnings.append(why + ": the twin-branch evidence is withheld (check --fn; a load that follows the motion "
+                              "also shortens the slips)")
     if 1.0 / (fn_used * pr.dt) < 15:
         warnings.append(f"{1.0 / (fn_used * pr.dt):.1f} samples per natural period: the slip-shape evidence is "
                         f"weak below about 20")

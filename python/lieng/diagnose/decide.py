@@ -382,7 +382,10 @@ def rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_for
     Holm's procedure gave it, by its margin), and one that the other's
     extension accounts for is not named.  A normal *force* is independent
     evidence of the load (its own variation), which no twin branch makes:
-    then only the twin is tested.  When neither survives the other, both
+    then only the twin is tested.  When neither survives the other and
+    one's extension leaves the other below its margin while the other's does
+    not, the one left below its margin is not named (an effect of that size
+    is not named).  Otherwise, when neither survives the other, both
     stay named (the record cannot tell them apart at its levels), and the
     one whose statistic the other's extension leaves the larger share of
     (its departure from those replicates over its departure from the
@@ -392,10 +395,17 @@ def rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_for
     if not all(k in named and fitted[k][0] is not base for k in RIVALS):
         return None
     tests = [("twin_branch", "load_variation")] + ([] if y_is_force else [("load_variation", "twin_branch")])
-    keep = {}
+    keep, left = {}, {}
     for k, other in tests:
         r = _given_rival(pr, k, other, fitted[other][0], fn, u_fn, st, rows[k], y_is_force, arcs, ylow, replicates, budget)
         keep[k] = r is None or (r[0] <= rows[k]["holm_level"] and r[1] >= MARGIN[k])
+        left[k] = math.inf if r is None else r[1]
+    small = [k for k in left if left[k] < MARGIN[k]]
+    if not any(keep.values()) and len(keep) == 2 and len(small) == 1:
+        # neither is significant beyond the other, but one's extension leaves the other's effect below its
+        # margin (the size below which no effect is named) and the other's does not: the one left below its
+        # margin adds nothing its rival does not explain, and is not named (as an effect of that size is not)
+        keep[next(k for k in keep if k not in small)] = True
     if not any(keep.values()) and len(keep) == 2:
         share = {}
         for k in keep:
@@ -416,4 +426,6 @@ def rivals(pr, base, fitted, fn, u_fn, st, rows, named, effects, notes, y_is_for
         effects[:] = [e for e in effects if e["effect"] != k]
         notes.append(f"{k} is not named: replicates of the fitted {other} extension give a {k} statistic like "
                      f"the record's ({st[k]:.3g} against {g['null_mean']:.3g} +- {g['null_sd']:.2g} in "
-                     f"{g['replicates']} replicates, p = {g['p']:.2g})")
+                     f"{g['replicates']} replicates, p = {g['p']:.2g}"
+                     + (f"; {left[k]:.3g} of the drop left, below its margin {MARGIN[k]})" if left[k] < MARGIN[k]
+                        else ")"))
