@@ -2041,3 +2041,30 @@ def test_a_normal_mode_the_slips_ring_is_not_a_triggering(r):
     d = diagnose(record_from_arrays(t, x, 2.0, y=3.0 + 0.5 * N), 10.0)
     assert not d.evidence["triggering"]["named"], d.evidence["triggering"]
     assert d.effect != "triggering"
+
+
+def test_an_encoder_that_counts_back_in_a_hold_is_no_reversal():
+    """A one-way drive with holds, its position recorded by an encoder
+    (0.5 um counts) that counts one back and forth while the servo holds:
+    one stroke, not a reciprocating record whose "backward strokes" are a
+    count long (a lever tribometer's ageing record was cut into 8 strokes,
+    and its peak growth of 0.17 of the drop read as 0.02).  A drive that
+    reverses by 3 mm is still cut at each reversal."""
+    from lieng.diagnose.read import _drive_from_position
+    from lieng.diagnose.segment import strokes
+
+    dt = 0.002
+    t = np.arange(0.0, 36.0, dt)
+    hold = (t % 6.0) > 4.0
+    pos = np.cumsum(np.where(hold, 0.0, 0.25 * dt))                      # mm, 0.25 mm/s between holds
+    q = 0.0005
+    counts = np.round(pos / q)
+    rng = np.random.default_rng(3)
+    for h0 in np.flatnonzero(np.diff(hold.astype(int)) == 1):            # a count back, twice in each hold
+        for a in h0 + rng.integers(50, 900, 2):
+            counts[a:a + rng.integers(4, 12)] -= 1
+    st = strokes(_drive_from_position(counts * q, dt, []))
+    assert len(st) == 1 and st[0].sign == 1, [(s.i0, s.i1, s.sign) for s in st]
+    back = 3.0 - np.abs(3.0 - (np.arange(0.0, 48.0, dt) * 0.5) % 6.0)     # 0..3 mm and back, 4 times
+    st = strokes(_drive_from_position(np.round(back / q) * q, dt, []))
+    assert [s.sign for s in st] == [1, -1] * 4, [(s.i0, s.i1, s.sign) for s in st]

@@ -290,7 +290,16 @@ def strokes(vd, min_samples: int = 20) -> list:
         d = float(np.sign(np.median(v)))
         if d and np.mean(np.sign(v) == d) >= 0.95 and abs(float(np.mean(v))) > 3.0 * float(np.std(v)):
             sgn[i0:i1] = int(d)
+    # a run that travels less than STROKE_SHORTEST of the longest run's travel is a dwell's jitter (an
+    # encoder's count back and forth while a servo holds, a drive settling after a stop), not a stroke: a
+    # reversal brings the drive back by a travel of the strokes' order
     s0, s1 = _runs(sgn != 0)
+    travel = np.array([abs(float(np.sum(vd[i0:i1]))) for i0, i1 in zip(s0, s1)])
+    if travel.size:
+        for i0, i1, d in zip(s0, s1, travel):
+            if d < STROKE_SHORTEST * float(travel.max()):
+                sgn[i0:i1] = 0
+        s0, s1 = _runs(sgn != 0)
     out = []
     for i0, i1 in zip(s0, s1):
         d = int(np.sign(np.sum(sgn[i0:i1])))
@@ -299,6 +308,10 @@ def strokes(vd, min_samples: int = 20) -> list:
         else:
             out.append(Stroke(int(i0), int(i1), d))
     return [s for s in out if s.n >= min_samples]
+
+
+#: a run of the drive shorter than this share of the longest run's travel is no stroke (:func:`strokes`)
+STROKE_SHORTEST = 0.02
 
 
 #: the slips' side of the increments' distribution must be this many times
