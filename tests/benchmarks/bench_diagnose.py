@@ -137,7 +137,8 @@ def run_one(truth, fn_uncertainty=None):
                                                           "effect_size", "interval", "named", "withheld", "fn_band", "p_size",
                                                           "size_level")}
                                for k, r in d.evidence.items()},
-                  "warnings": d.warnings, "fn_used": d.fn, "fn_source": d.fn_source, "cycles": d.n_cycles,
+                  "warnings": d.warnings, "notes": d.notes, "fn_used": d.fn, "fn_source": d.fn_source,
+                  "cycles": d.n_cycles,
                   "effects": d.effects, "detected": d.detected, "goodness": d.goodness}
     except LiengInputError as e:
         eff, g, named, err, detail = "error", 0.0, [], str(e), {}
