@@ -736,7 +736,8 @@ def _despiked(x, name: str, notes: list, when: str = ""):
 
 def _hum_lines(x, dt):
     """Mains lines (50/60 Hz and harmonics below Nyquist) that stand far
-    above the spectrum beside them: [(frequency, amplitude, a, b)].  The line
+    above the spectrum beside them: [(mains frequency, harmonic, (frequency,
+    amplitude, a, b))].  The line
     must peak within a bin (and the grid's 0.4 % tolerance) of the mains
     frequency: the shoulder of a line beside it (a harmonic of the
     stick-slip, a natural frequency near 50 or 60 Hz) is the record's own."""
@@ -751,7 +752,7 @@ def _hum_lines(x, dt):
     nyq = 0.5 / dt
     tt = np.arange(n) * dt
     # the record's own periodicity (the strongest line below 45 Hz: the stick-slip, a reciprocating stroke),
-    # refined within its bin; a mains line at one of its first 20 harmonics (within half a bin and 2 % of a
+    # refined within its bin; a mains line at one of its first 60 harmonics (within half a bin and 2 % of a
     # bin per harmonic), no stronger than a sawtooth's harmonic would be (2 A1 / h) and with the series
     # beside it, is the record's own
     k1 = 2 + int(np.argmax(S[2:max(int(45.0 * T), 3)])) if int(45.0 * T) > 3 else 0
@@ -789,7 +790,7 @@ def _hum_lines(x, dt):
                     if best is None or a * a + b * b > best[1] ** 2:
                         best = (ff, math.hypot(a, b), a, b)
                 hh = round(best[0] / f1) if f1 > 0 else 0
-                own = 2 <= hh <= 20 and abs(best[0] - hh * f1) <= (0.5 + 0.02 * hh) / T and peak <= 2.0 * a1 / hh
+                own = 2 <= hh <= 60 and abs(best[0] - hh * f1) <= (0.5 + 0.02 * hh) / T and peak <= 2.0 * a1 / hh
                 if own:
                     # a harmonic comes with its series: a line at h +- 1 or h +- 2 (a square wave's odd ones) at
                     # least a third of this one; hum on a harmonic stands out of it
@@ -797,13 +798,28 @@ def _hum_lines(x, dt):
                             for j in (hh - 2, hh - 1, hh + 1, hh + 2) if j >= 1 and round(j * f1 * T) + 2 < S.size]
                     own = bool(near) and max(near) >= peak / 3.0
                 if abs(best[0] - fh) <= 0.004 * fh + 0.5 / T and not own:     # the line is at the mains frequency
-                    found.append(best)
+                    found.append((base, h, best))
     return found
+
+
+def _mains(lines) -> float | None:
+    """The one mains frequency of a record, from the hum lines found in its
+    channels (:func:`_hum_lines`, pooled): a grid runs at 50 or at 60 Hz,
+    never both, so the lines of the other family are the record's own (a
+    mode near 100 or 150 Hz).  The family whose fundamental was found,
+    then the one with more lines; None when none was found."""
+    if not lines:
+        return None
+    score = {base: (any(h == 1 for b, h, _ in lines if b == base), sum(1 for b, _, _ in lines if b == base))
+             for base in {b for b, _, _ in lines}}
+    return max(score, key=lambda b: score[b])
 
 
 def condition(rec: Record) -> None:
     """Spikes and mains hum out of x (and y), in place, with notes; a
-    channel at its sensor's limit is warned of (:func:`_at_limit`)."""
+    channel at its sensor's limit is warned of (:func:`_at_limit`).  The hum
+    removed is of one mains frequency, the record's (:func:`_mains`)."""
+    hum = {}
     for name in ("x", "y"):
         v = getattr(rec, name)
         if v is None:
@@ -814,11 +830,22 @@ def condition(rec: Record) -> None:
             rec.warnings.append(f"the {'friction' if name == 'x' else 'normal'} channel ({unit}) {what}: a sensor or "
                                 f"amplifier at its limit? The clipped part is read as it was recorded")
         v = _despiked(v, name, rec.notes)
-        tt = rec.t - rec.t[0]
-        for ff, amp, a, b in _hum_lines(v, rec.dt):
+        setattr(rec, name, v)
+        hum[name] = _hum_lines(v, rec.dt)
+    mains = _mains([line for lines in hum.values() for line in lines])
+    tt = rec.t - rec.t[0]
+    for name, lines in hum.items():
+        v = getattr(rec, name)
+        for base, _, (ff, amp, a, b) in lines:
+            if base != mains:
+                continue
             v = v - a * np.cos(2 * math.pi * ff * tt) - b * np.sin(2 * math.pi * ff * tt)
             rec.notes.append(f"mains hum at {ff:.2f} Hz in {name} (amplitude {amp:.3g}) removed")
         setattr(rec, name, v)
+    other = sorted({ff for lines in hum.values() for base, _, (ff, _, _, _) in lines if base != mains})
+    if other:
+        rec.notes.append(f"lines at {', '.join(f'{ff:.2f}' for ff in other)} Hz sit near {110 - mains:g} Hz mains "
+                         f"harmonics, but the record's hum is at {mains:g} Hz: read as the record's own")
 
 
 def check_fn(rec: Record, fn: float, what: str, fix: str) -> None:
