@@ -752,9 +752,9 @@ def _hum_lines(x, dt):
     nyq = 0.5 / dt
     tt = np.arange(n) * dt
     # the record's own periodicity (the strongest line below 45 Hz: the stick-slip, a reciprocating stroke),
-    # refined within its bin; a mains line at one of its first 60 harmonics (within half a bin and 2 % of a
-    # bin per harmonic), no stronger than a sawtooth's harmonic would be (2 A1 / h) and with the series
-    # beside it, is the record's own
+    # refined within its bin; a mains line at one of its harmonics (within half a bin and 2 % of a bin per
+    # harmonic, while that stays under a quarter of their spacing), no stronger than a sawtooth's harmonic
+    # would be (2 A1 / h) and with the series beside it, is the record's own
     k1 = 2 + int(np.argmax(S[2:max(int(45.0 * T), 3)])) if int(45.0 * T) > 3 else 0
     f1 = a1 = 0.0
     if 2 < k1 < S.size - 1:
@@ -790,7 +790,8 @@ def _hum_lines(x, dt):
                     if best is None or a * a + b * b > best[1] ** 2:
                         best = (ff, math.hypot(a, b), a, b)
                 hh = round(best[0] / f1) if f1 > 0 else 0
-                own = 2 <= hh <= 60 and abs(best[0] - hh * f1) <= (0.5 + 0.02 * hh) / T and peak <= 2.0 * a1 / hh
+                tol = (0.5 + 0.02 * hh) / T
+                own = hh >= 2 and tol < 0.25 * f1 and abs(best[0] - hh * f1) <= tol and peak <= 2.0 * a1 / hh
                 if own:
                     # a harmonic comes with its series: a line at h +- 1 or h +- 2 (a square wave's odd ones) at
                     # least a third of this one; hum on a harmonic stands out of it
