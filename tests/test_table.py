@@ -39,6 +39,10 @@ VARIANTS = {
                                                  "t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
     "metadata, then a unit row under the header": "Test\tstick-slip\nTime\tForce\ns\tN\n"
                                                   + _rows(lambda a, b: f"{a}\t{b}\n"),
+    "whitespace, a comment, then a unit row under the header": "# rig A, sampled at 1 kHz\ntime F\ns N\n"
+                                                               + _rows(lambda a, b: f"{a} {b}\n"),
+    "whitespace, a unit row whose unit is a column's name": "# rig A\ntime F N\ns mN N\n"
+                                                            + _rows(lambda a, b: f"{a} {1000 * b:.3f} 20.0\n"),
     "a logger's date-time stamps": "Timestamp,F [N]\n" + _rows(lambda a, b: f"2024-03-01 10:22:{1 + a:06.3f},{b}\n"),
     "ISO date-times with a T": "Date_Time;F [N]\n" + _rows(lambda a, b: f"2024-03-01T23:59:{58 + a:06.3f};{b}\n"),
     "day-first date-times": "Date/Time,F [N]\n" + _rows(lambda a, b: f"01/03/2024 10:22:{1 + a:06.3f},{b}\n"),

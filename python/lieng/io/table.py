@@ -246,7 +246,9 @@ def _header_after_preamble(rows, content) -> int:
     if h >= 1 and all(len(_unquote(c)) <= 12 for c in cells) and len(cells) <= width[i]:
         # a row of units alone under the header ("s,N,N"): the header is the row above it
         prev = rows[content[h - 1]]
-        if len([c for c in re.split(r"[,;\t]", prev) if c.strip()]) == width[i] and not _numeric_cells(prev):
+        # (split as the row is written: a whitespace table's header has no comma, semicolon or TAB)
+        seps = r"[,;\t]" if re.search(r"[,;\t]", prev) else r"\s+"
+        if len([c for c in re.split(seps, prev.strip()) if c.strip()]) == width[i] and not _numeric_cells(prev):
             h -= 1
     # a header has no number in it (a data row with a word in it is a bad row, named as such)
     for c in re.split(r"[,;\t]|\s+", rows[content[h]].strip()):
