@@ -43,6 +43,8 @@ VARIANTS = {
                                                                + _rows(lambda a, b: f"{a} {b}\n"),
     "whitespace, a unit row whose unit is a column's name": "# rig A\ntime F N\ns mN N\n"
                                                             + _rows(lambda a, b: f"{a} {1000 * b:.3f} 20.0\n"),
+    "a status column of words, under a metadata line with a comma": "UMT-2 export, test 12\nt [s]\tF [N]\tstatus\n"
+        + _rows(lambda a, b: f"{a}\t{b}\t" + ("run" if a < 0.1 else "") + "\n"),
     "a logger's date-time stamps": "Timestamp,F [N]\n" + _rows(lambda a, b: f"2024-03-01 10:22:{1 + a:06.3f},{b}\n"),
     "ISO date-times with a T": "Date_Time;F [N]\n" + _rows(lambda a, b: f"2024-03-01T23:59:{58 + a:06.3f};{b}\n"),
     "day-first date-times": "Date/Time,F [N]\n" + _rows(lambda a, b: f"01/03/2024 10:22:{1 + a:06.3f},{b}\n"),
@@ -263,3 +265,56 @@ def test_a_displacement_beside_the_force_that_moves_one_way_is_the_drive(tmp_pat
     q.write_text("t [s],F [N],x [mm]\n" + "".join(f"{a},{b},{b / K * 1e3}\n" for a, b in zip(T, F)))
     r = read_record(q, v0=v, stiffness=K)
     assert not any("moves one way" in n for n in r.notes)
+
+
+def _xlsx(path, rows, shared_strings=True):
+    """A minimal Office Open XML workbook written by hand (zip + XML, as a
+    spreadsheet saves one): header cells as shared strings (or inline), the
+    numbers as stored, the worksheet reached through the workbook's
+    relationships."""
+    import zipfile
+
+    strings = []
+
+    def cell(ref, v):
+        if isinstance(v, str):
+            if shared_strings:
+                strings.append(v)
+                return f'<c r="{ref}" t="s"><v>{len(strings) - 1}</v></c>'
+            return f'<c r="{ref}" t="inlineStr"><is><t>{v}</t></is></c>'
+        return f'<c r="{ref}"><v>{v!r}</v></c>'
+
+    body = "".join(f'<row r="{i + 1}">' + "".join(cell(f"{chr(65 + j)}{i + 1}", v) for j, v in enumerate(r)
+                                                 if v is not None) + "</row>" for i, r in enumerate(rows))
+    m = 'xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"'
+    rel = 'xmlns:r="http://schemas.openxmlformats.org/officeDocument/2006/relationships"'
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("xl/workbook.xml", f'<workbook {m} {rel}><sheets><sheet name="Data" sheetId="1" r:id="rId7"/>'
+                                      f'</sheets></workbook>')
+        z.writestr("xl/_rels/workbook.xml.rels", '<Relationships xmlns="http://schemas.openxmlformats.org/package/'
+                   '2006/relationships"><Relationship Id="rId7" Type="worksheet" Target="worksheets/data.xml"/>'
+                   '</Relationships>')
+        z.writestr("xl/worksheets/data.xml", f"<worksheet {m}><sheetData>{body}</sheetData></worksheet>")
+        if shared_strings:
+            z.writestr("xl/sharedStrings.xml", f"<sst {m}>" + "".join(f"<si><t>{s}</t></si>" for s in strings)
+                       + "</sst>")
+
+
+@pytest.mark.parametrize("shared", [True, False])
+def test_a_spreadsheet_workbook_reads_as_the_plain_file(tmp_path, shared):
+    """An .xlsx export (a tribometer's software, a spreadsheet): its first
+    worksheet, with an instrument's line above the header and a blank cell
+    in a comment column, reads to the same numbers as the CSV."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    rows = [["UMT-2 export, test 12"], ["t [s]", "F [N]", "comment"]]
+    rows += [[float(T[i]), float(F[i]), "ok" if i % 50 == 0 else None] for i in range(200)]
+    p = tmp_path / "run.xlsx"
+    _xlsx(p, rows, shared)
+    r = read_record(p, v0=1.0, stiffness=K)
+    np.testing.assert_allclose(r.t, ref.t, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-12, atol=1e-15)
+    assert any("workbook" in n for n in r.notes)
+    bad = tmp_path / "bad.xlsx"
+    bad.write_bytes(b"PK\x03\x04 not really a workbook")
+    with pytest.raises(LiengInputError, match=r"bad.xlsx: not a readable .xlsx workbook"):
+        read_record(bad, v0=1.0, stiffness=K)

@@ -68,12 +68,14 @@ class Table:
         """What reading the file passed over or took as it found it, in words."""
         out = []
         if self.preamble:
-            out.append(f"{self.preamble} lines of text above the header passed over (not part of the table: the "
-                       f"instrument's metadata)")
+            out.append(f"{self.preamble} line{'s' if self.preamble != 1 else ''} of text above the header passed "
+                       f"over (not part of the table: the instrument's metadata)")
         if self.dropped:
             out.append(f"{self.dropped} rows with a missing value (empty, NaN) left out: the record is resampled "
                        f"across them")
-        if self.encoding != "utf-8":
+        if self.encoding == "xlsx":
+            out.append("read from the workbook's first worksheet")
+        elif self.encoding != "utf-8":
             out.append(f"the file is not UTF-8: read as {self.encoding} text")
         if self.comment_header:
             out.append("the header is the comment line above the numbers (as numpy.savetxt writes it)")
@@ -225,21 +227,48 @@ def _numeric_cells(row: str) -> int:
     return 0
 
 
+def _data_cells(row: str) -> tuple:
+    """A data row that may carry a column of words (a status, a comment,
+    blank on most rows): (its cells, its numbers) under the first separator
+    that splits it into two numbers at least, making up at least half of
+    its non-empty cells; (0, 0) for a row of text."""
+    for sep in (",", "\t", ";", None):
+        cells = [_unquote(c) for c in (row.split(sep) if sep else row.split())]
+        while len(cells) > 1 and not cells[-1]:
+            cells.pop()
+        filled = [c for c in cells if c]
+        nums = 0
+        for c in filled:
+            try:
+                _number(c, sep != ",")
+                nums += 1
+            except ValueError:
+                pass
+        if nums >= 2 and 2 * nums >= len(filled):
+            return len(cells), nums
+    return 0, 0
+
+
 #: the content lines searched for the header under an instrument's preamble
 PREAMBLE_SCAN = 200
 
 
 def _header_after_preamble(rows, content) -> int:
     """The index into ``content`` of the header row: the last text row
-    before the first two numeric rows of equal width (the row above a row
+    before the first two rows of as many numbers (the row above a row
     of units alone), so that an instrument's metadata lines above it
     ("Operator: ...", "Date: ...") are passed over; 0 when the data start
     directly under the first row or cannot be found."""
-    width = [_numeric_cells(rows[k]) for k in content[:PREAMBLE_SCAN]]
-    i = next((i for i in range(1, len(width)) if width[i] >= 2 and (i + 1 == len(width) or width[i + 1] == width[i])),
+    # (a row's numbers decide where the data start: a column of words, blank on most rows, leaves them)
+    data = [_data_cells(rows[k]) for k in content[:PREAMBLE_SCAN]]
+    nums = [d[1] for d in data]
+    i = next((i for i in range(1, len(nums)) if nums[i] >= 2 and (i + 1 == len(nums) or nums[i + 1] == nums[i])),
              None)
     if i is None or i < 2:
         return 0
+    width = [max(d[0], d[1]) for d in data]
+    if i + 1 < len(width):
+        width[i] = max(width[i], width[i + 1])
     h = i - 1
     above = rows[content[h]]
     cells = [c for c in re.split(r"[,;\t]|\s+", above.strip()) if c]
@@ -305,7 +334,10 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     """
     if str(path).lower().endswith(ARRAY_FILES):
         return _read_arrays(path, expect)
-    text, encoding = read_table_text(path)
+    if str(path).lower().endswith(WORKBOOKS):
+        text, encoding = _workbook_text(path), "xlsx"
+    else:
+        text, encoding = read_table_text(path)
     if text.startswith("\ufeff"):
         text = text[1:]
     rows = split_lines(text)
@@ -470,6 +502,75 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
 
 #: files of named arrays read as tables: MATLAB (v4 to v7) and NumPy archives
 ARRAY_FILES = (".mat", ".npz")
+#: spreadsheet workbooks read as tables (Office Open XML: the first worksheet)
+WORKBOOKS = (".xlsx", ".xlsm")
+
+
+def _workbook_text(path) -> str:
+    """The first worksheet of an Office Open XML workbook (``.xlsx``, as a
+    tribometer's software or a spreadsheet saves it) as TAB-separated text,
+    one row a line, for :func:`read_table` to read as it reads a text
+    export: numbers as stored (full precision; a date-time stays Excel's
+    serial day, which the record's reader knows by the column's name),
+    shared and inline strings as text, empty cells empty.  Standard
+    library only (zip + XML)."""
+    import io
+    import posixpath
+    import zipfile
+    import xml.etree.ElementTree as ET
+
+    ns = {"m": "http://schemas.openxmlformats.org/spreadsheetml/2006/main",
+          "r": "http://schemas.openxmlformats.org/officeDocument/2006/relationships",
+          "p": "http://schemas.openxmlformats.org/package/2006/relationships"}
+    raw = read_bytes(path, "record")
+    try:
+        with zipfile.ZipFile(io.BytesIO(raw)) as z:
+            names = set(z.namelist())
+            wb = ET.fromstring(z.read("xl/workbook.xml"))
+            sheet = wb.find("m:sheets/m:sheet", ns)
+            target = "xl/worksheets/sheet1.xml"
+            if sheet is not None and "xl/_rels/workbook.xml.rels" in names:
+                rid = sheet.get(f"{{{ns['r']}}}id")
+                rels = ET.fromstring(z.read("xl/_rels/workbook.xml.rels"))
+                for rel in rels.findall("p:Relationship", ns):
+                    if rel.get("Id") == rid:
+                        tg = rel.get("Target", "")
+                        target = tg.lstrip("/") if tg.startswith("/") else posixpath.normpath("xl/" + tg)
+            shared = []
+            if "xl/sharedStrings.xml" in names:
+                for si in ET.fromstring(z.read("xl/sharedStrings.xml")).findall("m:si", ns):
+                    shared.append("".join(t.text or "" for t in si.iter(f"{{{ns['m']}}}t")))
+            root = ET.fromstring(z.read(target))
+    except (zipfile.BadZipFile, KeyError, ET.ParseError, OSError) as exc:
+        raise LiengInputError(f"{path}: not a readable .xlsx workbook ({str(exc)[:80]}): save the sheet as CSV") \
+            from None
+
+    def col(ref: str) -> int:
+        n = 0
+        for ch in ref:
+            if not ch.isalpha():
+                break
+            n = 26 * n + ord(ch.upper()) - 64
+        return n - 1
+
+    lines = []
+    for row in root.iter(f"{{{ns['m']}}}row"):
+        cells = {}
+        for k, c in enumerate(row.findall("m:c", ns)):
+            j = col(c.get("r", "")) if c.get("r") else k
+            kind, v = c.get("t", "n"), c.find("m:v", ns)
+            if kind == "s" and v is not None:
+                text = shared[int(v.text)] if v.text and int(v.text) < len(shared) else ""
+            elif kind == "inlineStr":
+                text = "".join(t.text or "" for t in c.iter(f"{{{ns['m']}}}t"))
+            else:
+                text = v.text if v is not None and v.text is not None else ""
+            cells[j] = text.replace("\t", " ").replace("\n", " ").strip()
+        if cells:
+            lines.append("\t".join(cells.get(j, "") for j in range(max(cells) + 1)))
+    if not lines:
+        raise LiengInputError(f"{path}: the workbook's first sheet is empty")
+    return "\n".join(lines) + "\n"
 
 
 def _read_arrays(path, expect: str) -> Table:
