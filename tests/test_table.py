@@ -45,6 +45,9 @@ VARIANTS = {
                                                             + _rows(lambda a, b: f"{a} {1000 * b:.3f} 20.0\n"),
     "a status column of words, under a metadata line with a comma": "UMT-2 export, test 12\nt [s]\tF [N]\tstatus\n"
         + _rows(lambda a, b: f"{a}\t{b}\t" + ("run" if a < 0.1 else "") + "\n"),
+    "units as the names' last part, time in ms": "Time_ms,Force_mN\n" + _rows(lambda a, b: f"{1000 * a:.3f},{1000 * b:.4f}\n"),
+    "msec and gram-force": "Time (msec),Lateral Force (gf)\n" + _rows(lambda a, b: f"{1000 * a:.3f},{float(b) / 9.80665e-3!r}\n"),
+    "a tangential load is the friction force": "Time [s],Tangential load [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
     "a logger's date-time stamps": "Timestamp,F [N]\n" + _rows(lambda a, b: f"2024-03-01 10:22:{1 + a:06.3f},{b}\n"),
     "ISO date-times with a T": "Date_Time;F [N]\n" + _rows(lambda a, b: f"2024-03-01T23:59:{58 + a:06.3f};{b}\n"),
     "day-first date-times": "Date/Time,F [N]\n" + _rows(lambda a, b: f"01/03/2024 10:22:{1 + a:06.3f},{b}\n"),
@@ -318,3 +321,19 @@ def test_a_spreadsheet_workbook_reads_as_the_plain_file(tmp_path, shared):
     bad.write_bytes(b"PK\x03\x04 not really a workbook")
     with pytest.raises(LiengInputError, match=r"bad.xlsx: not a readable .xlsx workbook"):
         read_record(bad, v0=1.0, stiffness=K)
+
+
+@pytest.mark.parametrize("head, scale", [("position [in]", 1 / 25.4), ("stage_position_mil", 1 / 0.0254),
+                                         ("speed [in/s]", None), ("drive_um_s", None)])
+def test_an_american_or_suffixed_drive_unit_is_read(tmp_path, head, scale):
+    """A drive in inches (in, mil, in/s) or with its unit as the name's last
+    parts ("drive_um_s") reads to the same drive velocity (0.5 mm/s)."""
+    if scale is None:
+        v = 0.5 / 25.4 if "in/s" in head else 500.0
+        rows = _rows(lambda a, b: f"{a},{b},{v!r}\n")
+    else:
+        rows = _rows(lambda a, b: f"{a},{b},{float(0.5 * a * scale)!r}\n")
+    p = tmp_path / "drive.csv"
+    p.write_text(f"t [s],F [N],{head}\n" + rows)
+    r = read_record(p, stiffness=K)
+    assert r.drive_recorded and float(np.median(r.vd)) == pytest.approx(0.5, rel=1e-6)

@@ -60,9 +60,13 @@ _NAMES = {
 }
 #: time column names whose plain numbers between 20000 and 80000 are a spreadsheet's serial dates (days)
 EXCEL_DAY_NAMES = ("date", "datetime", "date_time", "date/time", "timestamp", "time stamp", "date time")
-_LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6}
-_VELOCITY = {"": 1.0, "mm/s": 1.0, "um/s": 1e-3, "µm/s": 1e-3, "m/s": 1e3, "cm/s": 10.0, "mm/min": 1 / 60}
-_TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0, "h": 3600.0, "hr": 3600.0}
+#: (and the inch-based units of an American rig: in, mil = 0.001 in)
+_LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6,
+           "in": 25.4, "inch": 25.4, "mil": 0.0254}
+_VELOCITY = {"": 1.0, "mm/s": 1.0, "um/s": 1e-3, "µm/s": 1e-3, "m/s": 1e3, "cm/s": 10.0, "mm/min": 1 / 60,
+             "mm/sec": 1.0, "um/sec": 1e-3, "µm/sec": 1e-3, "m/min": 1e3 / 60, "in/s": 25.4, "in/min": 25.4 / 60}
+_TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "msec": 1e-3, "us": 1e-6, "µs": 1e-6, "usec": 1e-6,
+         "min": 60.0, "h": 3600.0, "hr": 3600.0}
 #: forces (N), also the gravitational units a balance or an old rig writes (gram-, kilogram-, pound-force)
 _FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "kn": 1e3, "dan": 10.0, "gf": 9.80665e-3,
           "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605}
@@ -167,6 +171,8 @@ def _role(name: str, unit: str = ""):
         fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
     # (the words with their accents taken off: "Déplacement", "Force normale")
     words = set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", key).encode("ascii", "ignore").decode()))
+    if "load" in words and words & {"friction", "tangential", "lateral", "shear", "traction"}:
+        words = words - {"load"}             # "Tangential load", "Friction load": the friction force
     if {"load", "point"} <= words or "lp" in words:
         words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
     named = [role for role, alts in _NAMES.items() if key in alts] + \
@@ -209,7 +215,19 @@ def _slider_and_stage(roles):
 
 def _column_role(name: str, unit: str = ""):
     """(role, unit) of a header cell: :func:`_role`, or with the unit as the
-    name's last part ("time_s", "force_mN")."""
+    name's last part ("time_ms", "force_mN", a velocity's two: "speed_um_s")
+    when the rest names a role (the last part is read as the unit before
+    the whole name is: "Time_ms" is a time in ms, not in s)."""
+    key = name.strip().lower().replace(" ", "_").replace("-", "_")
+    if not unit and "_" in name and not any(key in alts for alts in _NAMES.values()):   # ("tau_s" is a name)
+        parts = name.split("_")
+        for k in (2, 1):
+            if len(parts) <= k:
+                continue
+            suffix = "/".join(parts[-k:])
+            role = _role("_".join(parts[:-k]), suffix)
+            if role is not None and any(r == role and _unit_key(suffix) in units_of for r, units_of in _FITS):
+                return role, suffix
     role = _role(name, unit)
     if role is None and not unit and "_" in name:
         stem, suffix = name.rsplit("_", 1)
