@@ -12,6 +12,7 @@ gain), :mod:`.report` (diagnosis.json, report.md, plots).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -29,8 +30,8 @@ from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import lowpass, y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
-from lieng.diagnose.segment import (crop, estimate_fn, find_cycles, head, prepare, reversal_ramp, slip_seconds,
-                                    stick_ratios, stick_slip_span)
+from lieng.diagnose.segment import (crop, drive_from_force, estimate_fn, find_cycles, head, prepare, reversal_ramp,
+                                    slip_seconds, stick_ratios, stick_slip_span)
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -286,10 +287,23 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: a relative uncertainty between 0.001 and 0.5")
     if fn is None and fn_uncertainty != FN_UNCERTAINTY:
         raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: it is the uncertainty of a given --fn; give --fn")
+    inferred = None
+    if not rec.drive_recorded and rec.vd.size and np.all(rec.vd == rec.vd[0]):
+        # a reciprocating rig given only its speed: the strokes from the force's side
+        vd = drive_from_force(rec.x, abs(float(rec.vd[0])))
+        if vd is not None:
+            rec = dataclasses.replace(rec, vd=vd, notes=list(rec.notes), warnings=list(rec.warnings))
+            inferred = vd
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
     warnings = list(rec.warnings)
-    if not rec.drive_recorded and len(pr.strokes) == 1:
+    if inferred is not None:
+        notes.append(f"the force changes side over the record and no drive was recorded: the drive is taken to "
+                     f"reverse where it does ({len(pr.strokes)} strokes at --v0 "
+                     f"{abs(float(inferred[inferred != 0][0])):g} mm/s: a reciprocating rig), each stroke starting "
+                     f"where the spring starts over to the other side and a force standing still before it read as "
+                     f"a dwell; give the stage's position to set the strokes")
+    if not rec.drive_recorded and len(pr.strokes) == 1 and inferred is None:
         big = float(np.max(np.abs(rec.x))) if rec.x.size else 0.0
         neg, pos = (float(np.mean(rec.x < -0.2 * big)), float(np.mean(rec.x > 0.2 * big))) if big > 0 else (0.0, 0.0)
         if min(neg, pos) > 0.2:

@@ -276,6 +276,19 @@ def _runs(mask):
     return np.flatnonzero(d == 1), np.flatnonzero(d == -1)
 
 
+def _sign_runs(sgn):
+    """Start and end (exclusive) of the runs of one nonzero sign (a drive
+    that turns from one sample to the next, with no sample at rest between,
+    ends a run there)."""
+    s0, s1 = _runs(sgn != 0)
+    starts, ends = [], []
+    for i0, i1 in zip(s0, s1):
+        cut = i0 + 1 + np.flatnonzero(np.diff(sgn[i0:i1]))
+        starts.extend([i0, *cut])
+        ends.extend([*cut, i1])
+    return np.array(starts, int), np.array(ends, int)
+
+
 def strokes(vd, min_samples: int = 20) -> list:
     """Strokes of one drive direction (see the module docstring)."""
     a = np.abs(vd)
@@ -293,13 +306,13 @@ def strokes(vd, min_samples: int = 20) -> list:
     # a run that travels less than STROKE_SHORTEST of the longest run's travel is a dwell's jitter (an
     # encoder's count back and forth while a servo holds, a drive settling after a stop), not a stroke: a
     # reversal brings the drive back by a travel of the strokes' order
-    s0, s1 = _runs(sgn != 0)
+    s0, s1 = _sign_runs(sgn)
     travel = np.array([abs(float(np.sum(vd[i0:i1]))) for i0, i1 in zip(s0, s1)])
     if travel.size:
         for i0, i1, d in zip(s0, s1, travel):
             if d < STROKE_SHORTEST * float(travel.max()):
                 sgn[i0:i1] = 0
-        s0, s1 = _runs(sgn != 0)
+        s0, s1 = _sign_runs(sgn)
     out = []
     for i0, i1 in zip(s0, s1):
         d = int(np.sign(np.sum(sgn[i0:i1])))
@@ -312,6 +325,90 @@ def strokes(vd, min_samples: int = 20) -> list:
 
 #: a run of the drive shorter than this share of the longest run's travel is no stroke (:func:`strokes`)
 STROKE_SHORTEST = 0.02
+
+#: a force that changes sign: at least this share of the record on each side,
+#: beyond REVERSING_LEVEL of its largest size (:func:`drive_from_force`)
+REVERSING_SHARE = 0.2
+REVERSING_LEVEL = 0.2
+
+
+def drive_from_force(x, v0: float, min_samples: int = 20):
+    """The drive's direction read from the friction force, for a record
+    that gives only the drive's speed (``--v0``) while its force changes
+    sign over long stretches (a reciprocating rig without its stage's
+    position): the signed drive velocity (mm/s) at each sample, 0 in the
+    dwells, or None when the force does not reverse.
+
+    The friction holds the spring on the side the drive pulls it to, so the
+    force's side (with a hysteresis of half each side's median level about
+    their mid-point) is the stroke's direction.  A stroke begins where the
+    spring starts over to the other side: walking back from where the force
+    crosses the new side's threshold, the force on the old side stays
+    within the larger of three noise levels and a twentieth of the old
+    side's level of its largest; the presliding ramp starts after its last
+    sample within the smoothed noise of that largest (the stage having
+    turned), and the stretch before it within that tolerance is a dwell
+    when the force stands still there (it moves at under a fifth of the
+    ramp's speed, at which the turned stage loads the spring).  Sides held for fewer
+    than ``min_samples`` samples are the slips' overshoot, not strokes."""
+    x = np.asarray(x, float)
+    n = x.size
+    big = float(np.max(np.abs(x))) if n else 0.0
+    if not (n >= 4 * min_samples and big > 0 and v0 > 0):
+        return None
+    pos, neg = x > REVERSING_LEVEL * big, x < -REVERSING_LEVEL * big
+    if min(float(np.mean(pos)), float(np.mean(neg))) <= REVERSING_SHARE:
+        return None
+    lp, ln = float(np.median(x[pos])), float(np.median(x[neg]))
+    mid, h = 0.5 * (lp + ln), 0.25 * (lp - ln)
+    # the side by hysteresis: +1 above mid + h, -1 below mid - h, else the last side
+    side = np.zeros(n, int)
+    side[x > mid + h] = 1
+    side[x < mid - h] = -1
+    idx = np.flatnonzero(side)
+    state = side[idx[np.maximum(np.searchsorted(idx, np.arange(n), side="right") - 1, 0)]]
+    state[:idx[0]] = side[idx[0]]
+    # sides held briefly (a slip's overshoot) belong to the side around them
+    for _ in range(3):
+        b = np.flatnonzero(np.diff(state)) + 1
+        starts, ends = np.r_[0, b], np.r_[b, n]
+        short = [(i0, i1) for i0, i1 in zip(starts, ends) if i1 - i0 < min_samples and i0 > 0]
+        if not short:
+            break
+        for i0, i1 in short:
+            state[i0:i1] = state[i0 - 1]
+    changes = np.flatnonzero(np.diff(state)) + 1
+    if changes.size == 0:
+        return None
+    noise = noise_level(x)
+    k = max(3, int(min_samples) // 4)
+    xs = np.convolve(x, np.ones(k) / k, mode="same")
+    vd = v0 * state.astype(float)
+    prev = 0
+    for c in changes:
+        old = int(state[c - 1])
+        y = old * (xs[prev:c] - mid)
+        tol = max(3.0 * noise, 0.05 * (lp - mid if old > 0 else mid - ln))
+        # walking back: the running maximum of y, until y falls tol below it
+        run = np.maximum.accumulate(y[::-1])[::-1]      # run[i] = max of y[i:]
+        below = np.flatnonzero(y < run - tol)
+        i_stop = int(below[-1]) + 1 if below.size else 0
+        # the ramp starts after the last sample within the smoothed noise of the top (a dwell's force stands
+        # within it)
+        top = float(np.max(y[i_stop:]))
+        near = np.flatnonzero(y[i_stop:] >= top - 3.0 * noise / math.sqrt(k))
+        i_top = i_stop + int(near[-1])
+        vd[prev + i_top:c] = v0 * -old
+        # the stretch before it within the tolerance is a dwell when the force stands still there (a stick
+        # loads the spring at the drive's speed)
+        if i_top - i_stop >= min_samples and c - prev - i_top >= 2:
+            seg = xs[prev + i_stop:prev + i_top]
+            slope = abs(float(np.polyfit(np.arange(seg.size, dtype=float), seg, 1)[0]))
+            ramp = abs(float(xs[c - 1] - xs[prev + i_top])) / (c - 1 - prev - i_top)
+            if slope < 0.2 * ramp:
+                vd[prev + i_stop:prev + i_top] = 0.0
+        prev = c
+    return vd
 
 
 #: the slips' side of the increments' distribution must be this many times
