@@ -17,6 +17,9 @@ units in the header in brackets or the defaults below):
   column when there is one, else a force in units of the (constant) load,
   whose scale only the sticks can give.
 
+A spreadsheet workbook (``.xlsx``: its first worksheet) is read as such a
+table, a MATLAB ``.mat`` or NumPy ``.npz`` file by its vectors' names.
+
 Without a drive column the constant ``v0`` is used; a drive may be signed
 and may reverse (reciprocating rigs: see :mod:`.segment`).  Uneven sampling
 and gaps are resampled onto the median interval, spikes (isolated samples or

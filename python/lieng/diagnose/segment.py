@@ -6,6 +6,9 @@ frequency.
   out (holds between strokes of one direction are kept: they are part of
   the stick).  Each stroke is turned to the forward direction (x and the
   drive times its sign), so that every stroke is a forward stick-slip trace.
+  A record that gives only the drive's speed while its force changes side
+  (a reciprocating rig without its stage's position) has its strokes read
+  from the force (:func:`drive_from_force`).
 * **Orientation.**  Labs write the friction force with either sign; x is
   turned so that it rises at the drive velocity while the slider sticks.
 * **Cycles.**  Alternating extrema of the lightly smoothed x with a
