@@ -1495,8 +1495,9 @@ def test_a_reciprocating_record_given_only_its_speed_is_cut_into_strokes_by_its_
     """A reciprocating rig's force record read with --v0 alone (no stage
     position): the force changes side with the drive, so the strokes are
     read from it; each starts within a few samples of the stage's turn (the
-    spring starts over to the other side there), the dwells are found, and
-    the slips are the same as with the stage's velocity recorded."""
+    spring starts over to the other side there), and the slips are the same
+    as with the stage's velocity recorded (a real record:
+    ``test_diagnose_real.test_the_tribometer_without_its_stage_position``)."""
     from lieng.diagnose.segment import drive_from_force, strokes
 
     t, x, vs, turns = _reciprocating_dwells()
@@ -1506,7 +1507,6 @@ def test_a_reciprocating_record_given_only_its_speed_is_cut_into_strokes_by_its_
     assert [s.sign for s in st] == [1, -1, 1, -1, 1, -1]
     starts = np.array([t[s.i0] for s in st[1:]])
     assert np.all(np.abs(starts - turns) < 0.01)          # 10 ms: 0.04 mm of the stage's travel at 4 mm/s
-    assert np.mean(vd == 0) > 0.1                         # the dwells (18 % of the record) mostly found
     d_inf = diagnose(record_from_arrays(t, x, 4.0), 25.0)
     d_rec = diagnose(record_from_arrays(t, x, vs), 25.0)
     assert any("taken to reverse" in n for n in d_inf.notes)

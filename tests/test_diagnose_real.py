@@ -76,6 +76,41 @@ def test_reciprocating_tribometer_every_stroke(tmp_path):
     assert (out / "report.md").exists()
 
 
+def test_the_tribometer_without_its_stage_position(tmp_path):
+    """The same record with its position column left out and the stage's
+    speed given (--v0 0.223 mm/s, read off the position column): the force
+    changes side with the stage, so the strokes are read from it: as many
+    as the stage makes, each starting within 50 ms of the stage's own start
+    (from the raw position, plain NumPy), and the same sliding level within
+    5 % (its dwells, which the force alone does not tell from sliding, stay
+    in the strokes: the level is read on each stroke's second half, there
+    mostly the dwell, which holds the force the sliding ended at: 2.4 %
+    above the median over the sliding)."""
+    raw = np.genfromtxt(TD2, skip_header=1)
+    t, N, pos, F = raw.T
+    v = np.gradient(pos, t)
+    moving = np.abs(v) > 0.05
+    assert np.median(np.abs(v[moving])) == pytest.approx(0.223, rel=0.02)
+    edges = np.flatnonzero(np.diff(np.r_[0, moving.astype(int), 0]))
+    starts = t[edges[::2]]
+    p = tmp_path / "td2_no_position.txt"
+    np.savetxt(p, np.column_stack([t, N, F]), delimiter="\t", header="Time [s]\tNormal [uN]\tFriction [uN]",
+               comments="", fmt="%.9g")
+    d0, _ = _run(tmp_path / "a", TD2, "--stiffness", "37500")
+    d1, _ = _run(tmp_path / "b", p, "--stiffness", "37500", "--v0", "0.223")
+    assert d1["effect"] == "no_stick_slip"
+    assert any("taken to reverse" in n for n in d1["notes"])
+    assert len(d1["sliding"]["levels_mm"]) == len(d0["sliding"]["levels_mm"]) == starts.size
+    from lieng.diagnose import read_record
+    from lieng.diagnose.segment import drive_from_force, strokes
+
+    rec = read_record(p, stiffness=37500.0, v0=0.223)
+    st = strokes(drive_from_force(rec.x, 0.223))
+    assert np.all(np.abs(np.array([rec.t[s.i0] for s in st[1:]]) - starts[1:]) < 0.05)
+    lv0, lv1 = (np.median(np.asarray(d["sliding"]["levels_mm"], float)) for d in (d0, d1))
+    assert lv1 == pytest.approx(lv0, rel=0.05)
+
+
 @pytest.mark.parametrize("v", [1100, 4300])
 def test_paper_on_paper_spring_slider(tmp_path, v):
     """Stick-slip (1.1 mm/s) and a near-harmonic inertial regime (4.3 mm/s):

@@ -292,7 +292,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         # a reciprocating rig given only its speed: the strokes from the force's side
         vd = drive_from_force(rec.x, abs(float(rec.vd[0])))
         if vd is not None:
-            rec = dataclasses.replace(rec, vd=vd, notes=list(rec.notes), warnings=list(rec.warnings))
+            rec = dataclasses.replace(rec, vd=vd, notes=list(rec.notes), warnings=list(rec.warnings),
+                                      drive_from_force=True)
             inferred = vd
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
@@ -301,8 +302,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         notes.append(f"the force changes side over the record and no drive was recorded: the drive is taken to "
                      f"reverse where it does ({len(pr.strokes)} strokes at --v0 "
                      f"{abs(float(inferred[inferred != 0][0])):g} mm/s: a reciprocating rig), each stroke starting "
-                     f"where the spring starts over to the other side and a force standing still before it read as "
-                     f"a dwell; give the stage's position to set the strokes")
+                     f"where the spring starts over to the other side (a dwell before it is read as moving); give "
+                     f"the stage's position to set the strokes and the dwells")
     if not rec.drive_recorded and len(pr.strokes) == 1 and inferred is None:
         big = float(np.max(np.abs(rec.x))) if rec.x.size else 0.0
         neg, pos = (float(np.mean(rec.x < -0.2 * big)), float(np.mean(rec.x > 0.2 * big))) if big > 0 else (0.0, 0.0)

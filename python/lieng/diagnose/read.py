@@ -119,6 +119,9 @@ class Record:
     #: the unit of that stiffness: N/m, Pa/m for a stress record, 1/m for
     #: a friction coefficient without a normal force
     stiffness_unit: str = "N/m"
+    #: the drive's direction was read from the force's side
+    #: (:func:`.segment.drive_from_force`): x already rises with it
+    drive_from_force: bool = False
 
     @property
     def dt(self) -> float:

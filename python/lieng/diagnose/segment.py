@@ -339,21 +339,20 @@ def drive_from_force(x, v0: float, min_samples: int = 20):
     """The drive's direction read from the friction force, for a record
     that gives only the drive's speed (``--v0``) while its force changes
     sign over long stretches (a reciprocating rig without its stage's
-    position): the signed drive velocity (mm/s) at each sample, 0 in the
-    dwells, or None when the force does not reverse.
+    position): the signed drive velocity (mm/s) at each sample, or None
+    when the force does not reverse.
 
     The friction holds the spring on the side the drive pulls it to, so the
     force's side (with a hysteresis of half each side's median level about
     their mid-point) is the stroke's direction.  A stroke begins where the
-    spring starts over to the other side: walking back from where the force
-    crosses the new side's threshold, the force on the old side stays
-    within the larger of three noise levels and a twentieth of the old
-    side's level of its largest; the presliding ramp starts after its last
-    sample within the smoothed noise of that largest (the stage having
-    turned), and the stretch before it within that tolerance is a dwell
-    when the force stands still there (it moves at under a fifth of the
-    ramp's speed, at which the turned stage loads the spring).  Sides held for fewer
-    than ``min_samples`` samples are the slips' overshoot, not strokes."""
+    spring starts over to the other side: from where the force leaves the
+    old side's threshold, back while it still moved over at a quarter of
+    its speed across the thresholds or more, then back by what the window
+    there straddles of the corner (the stage turned there; a dwell's force
+    stands still or relaxes slowly before it).  A dwell is not told from a
+    stroke's steady sliding by the force alone, so it stays in the stroke
+    before it, read as moving.  Sides held for fewer than ``min_samples``
+    samples are the slips' overshoot, not strokes."""
     x = np.asarray(x, float)
     n = x.size
     big = float(np.max(np.abs(x))) if n else 0.0
@@ -383,33 +382,27 @@ def drive_from_force(x, v0: float, min_samples: int = 20):
     changes = np.flatnonzero(np.diff(state)) + 1
     if changes.size == 0:
         return None
-    noise = noise_level(x)
     k = max(3, int(min_samples) // 4)
     xs = np.convolve(x, np.ones(k) / k, mode="same")
     vd = v0 * state.astype(float)
     prev = 0
     for c in changes:
         old = int(state[c - 1])
+        # the crossing: from the last sample beyond the old side's threshold to the first beyond the new one's
         y = old * (xs[prev:c] - mid)
-        tol = max(3.0 * noise, 0.05 * (lp - mid if old > 0 else mid - ln))
-        # walking back: the running maximum of y, until y falls tol below it
-        run = np.maximum.accumulate(y[::-1])[::-1]      # run[i] = max of y[i:]
-        below = np.flatnonzero(y < run - tol)
-        i_stop = int(below[-1]) + 1 if below.size else 0
-        # the ramp starts after the last sample within the smoothed noise of the top (a dwell's force stands
-        # within it)
-        top = float(np.max(y[i_stop:]))
-        near = np.flatnonzero(y[i_stop:] >= top - 3.0 * noise / math.sqrt(k))
-        i_top = i_stop + int(near[-1])
-        vd[prev + i_top:c] = v0 * -old
-        # the stretch before it within the tolerance is a dwell when the force stands still there (a stick
-        # loads the spring at the drive's speed)
-        if i_top - i_stop >= min_samples and c - prev - i_top >= 2:
-            seg = xs[prev + i_stop:prev + i_top]
-            slope = abs(float(np.polyfit(np.arange(seg.size, dtype=float), seg, 1)[0]))
-            ramp = abs(float(xs[c - 1] - xs[prev + i_top])) / (c - 1 - prev - i_top)
-            if slope < 0.2 * ramp:
-                vd[prev + i_stop:prev + i_top] = 0.0
+        beyond = np.flatnonzero(y >= h)
+        c0 = prev + (int(beyond[-1]) if beyond.size else 0)
+        rate = 2.0 * h / max(c - c0, 1)                  # the force's speed across (per sample)
+        # walking back from there while the force still moved over at a quarter of that speed or more (the
+        # stage turned where it began; a dwell's force stands still or relaxes slowly before it)
+        w = max(k, (c - c0) // 4, 1)
+        r = c0
+        while r - w >= prev and old * (xs[r - w] - xs[r]) >= 0.25 * rate * w:
+            r -= 1
+        if r - w >= prev:
+            # the window there straddles the corner: the ramp, at its rate, began its fall ago
+            r -= int(round(max(old * float(xs[r - w] - xs[r]), 0.0) / rate))
+        vd[r:c] = v0 * -old
         prev = c
     return vd
 
@@ -475,7 +468,8 @@ def prepare(rec: Record) -> Prepared:
             ys.append(rec.y[sl])
     x = np.concatenate(xs)
     vd = np.concatenate(vs)
-    flipped = _turned(xs, vd, dt)
+    # (a drive read from the force's side has the force's sign: nothing to turn)
+    flipped = False if rec.drive_from_force else _turned(xs, vd, dt)
     notes = []
     if flipped:
         x = -x
