@@ -1512,6 +1512,13 @@ def test_a_reciprocating_record_given_only_its_speed_is_cut_into_strokes_by_its_
     assert any("taken to reverse" in n for n in d_inf.notes)
     assert abs(d_inf.n_cycles - d_rec.n_cycles) <= 2 and d_inf.n_cycles >= 25
     assert d_inf.effect == d_rec.effect == "none"
+    # a one-way stick-slip trace about zero (an AC-coupled sensor) crosses zero in every cycle, down in the
+    # slips and up in the sticks: no drive that turns
+    t, x, vs, _ = _reciprocating_dwells(strokes=1, stroke_s=6.0)
+    ac = x - np.convolve(x, np.ones(1200) / 1200, mode="same")
+    keep = slice(600, -600)
+    assert min(np.mean(ac[keep] > 0.1), np.mean(ac[keep] < -0.1)) > 0.2
+    assert drive_from_force(ac[keep], 4.0) is None
 
 
 

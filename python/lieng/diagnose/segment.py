@@ -333,6 +333,9 @@ STROKE_SHORTEST = 0.02
 #: beyond REVERSING_LEVEL of its largest size (:func:`drive_from_force`)
 REVERSING_SHARE = 0.2
 REVERSING_LEVEL = 0.2
+#: the crossings up and down of a drive that turns take alike: one way this many times longer is
+#: a one-way stick-slip trace about zero (slips down, sticks up)
+CROSSING_RATIO = 3.0
 
 
 def drive_from_force(x, v0: float, min_samples: int = 20):
@@ -352,7 +355,10 @@ def drive_from_force(x, v0: float, min_samples: int = 20):
     stands still or relaxes slowly before it).  A dwell is not told from a
     stroke's steady sliding by the force alone, so it stays in the stroke
     before it, read as moving.  Sides held for fewer than ``min_samples``
-    samples are the slips' overshoot, not strokes."""
+    samples are the slips' overshoot, not strokes; a force whose crossings
+    one way take CROSSING_RATIO times longer than the other way's is a
+    one-way stick-slip about zero (an AC-coupled sensor: slips cross down,
+    sticks up), not a drive that turns: None."""
     x = np.asarray(x, float)
     n = x.size
     big = float(np.max(np.abs(x))) if n else 0.0
@@ -384,14 +390,24 @@ def drive_from_force(x, v0: float, min_samples: int = 20):
         return None
     k = max(3, int(min_samples) // 4)
     xs = np.convolve(x, np.ones(k) / k, mode="same")
-    vd = v0 * state.astype(float)
+    # the crossings: from the last sample beyond the old side's threshold to the first beyond the new one's
+    cross = []
     prev = 0
     for c in changes:
         old = int(state[c - 1])
-        # the crossing: from the last sample beyond the old side's threshold to the first beyond the new one's
-        y = old * (xs[prev:c] - mid)
-        beyond = np.flatnonzero(y >= h)
-        c0 = prev + (int(beyond[-1]) if beyond.size else 0)
+        beyond = np.flatnonzero(old * (xs[prev:c] - mid) >= h)
+        cross.append((c, prev + (int(beyond[-1]) if beyond.size else 0), old))
+        prev = c
+    # a drive that turns loads the spring over to the other side at its speed both ways; a one-way
+    # stick-slip trace about zero (an AC-coupled sensor) crosses down in its slips, fast, and up in its sticks
+    ups = [c - c0 for c, c0, old in cross if old < 0]
+    downs = [c - c0 for c, c0, old in cross if old > 0]
+    if ups and downs and max(np.median(ups), np.median(downs)) > CROSSING_RATIO * min(np.median(ups),
+                                                                                       np.median(downs)):
+        return None
+    vd = v0 * state.astype(float)
+    prev = 0
+    for c, c0, old in cross:
         rate = 2.0 * h / max(c - c0, 1)                  # the force's speed across (per sample)
         # walking back from there while the force still moved over at a quarter of that speed or more (the
         # stage turned where it began; a dwell's force stands still or relaxes slowly before it)
