@@ -1512,6 +1512,10 @@ def test_a_reciprocating_record_given_only_its_speed_is_cut_into_strokes_by_its_
     assert any("taken to reverse" in n for n in d_inf.notes)
     assert abs(d_inf.n_cycles - d_rec.n_cycles) <= 2 and d_inf.n_cycles >= 25
     assert d_inf.effect == d_rec.effect == "none"
+    # a speed readout without its sign (the dwells at 0): the sign from the force's side
+    d_abs = diagnose(record_from_arrays(t, x, np.abs(vs)), 25.0)
+    assert any("without its sign" in n and "6 strokes" in n for n in d_abs.notes)
+    assert abs(d_abs.n_cycles - d_rec.n_cycles) <= 2 and d_abs.effect == "none"
     # a one-way stick-slip trace about zero (an AC-coupled sensor) crosses zero in every cycle, down in the
     # slips and up in the sticks: no drive that turns
     t, x, vs, _ = _reciprocating_dwells(strokes=1, stroke_s=6.0)

@@ -287,7 +287,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: a relative uncertainty between 0.001 and 0.5")
     if fn is None and fn_uncertainty != FN_UNCERTAINTY:
         raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: it is the uncertainty of a given --fn; give --fn")
-    inferred = None
+    inferred = unsigned = None
     if not rec.drive_recorded and rec.vd.size and np.all(rec.vd == rec.vd[0]):
         # a reciprocating rig given only its speed: the strokes from the force's side
         vd = drive_from_force(rec.x, abs(float(rec.vd[0])))
@@ -295,6 +295,13 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             rec = dataclasses.replace(rec, vd=vd, notes=list(rec.notes), warnings=list(rec.warnings),
                                       drive_from_force=True)
             inferred = vd
+    elif rec.drive_recorded and rec.vd.size and np.all(rec.vd >= 0) and np.any(rec.vd > 0):
+        # a speed readout without its sign (a drive that turns, its dwells at 0): the sign from the force's side
+        side = drive_from_force(rec.x, 1.0)
+        if side is not None:
+            rec = dataclasses.replace(rec, vd=rec.vd * side, notes=list(rec.notes), warnings=list(rec.warnings),
+                                      drive_from_force=True)
+            unsigned = side
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
     warnings = list(rec.warnings)
@@ -304,6 +311,10 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                      f"{abs(float(inferred[inferred != 0][0])):g} mm/s: a reciprocating rig), each stroke starting "
                      f"where the spring starts over to the other side (a dwell before it is read as moving); give "
                      f"the stage's position to set the strokes and the dwells")
+    if unsigned is not None:
+        notes.append(f"the drive column is never negative while the force changes side: a speed readout without "
+                     f"its sign, read with the force's side as the direction ({len(pr.strokes)} strokes); give a "
+                     f"signed velocity or the stage's position to set them")
     if not rec.drive_recorded and len(pr.strokes) == 1 and inferred is None:
         big = float(np.max(np.abs(rec.x))) if rec.x.size else 0.0
         neg, pos = (float(np.mean(rec.x < -0.2 * big)), float(np.mean(rec.x > 0.2 * big))) if big > 0 else (0.0, 0.0)
