@@ -210,28 +210,10 @@ def _is_comment(row: str) -> bool:
     return row.lstrip().startswith(_COMMENT)
 
 
-def _numeric_cells(row: str) -> int:
-    """The number of cells of a row that is all numbers (two at least) under
-    some separator, else 0."""
-    for sep in (",", "\t", ";", None):
-        cells = [_unquote(c) for c in (row.split(sep) if sep else row.split())]
-        while len(cells) > 1 and not cells[-1]:
-            cells.pop()
-        if len(cells) < 2:
-            continue
-        try:
-            [_number(c, sep != ",") for c in cells]
-        except ValueError:
-            continue
-        return len(cells)
-    return 0
-
-
-def _data_cells(row: str) -> tuple:
-    """A data row that may carry a column of words (a status, a comment,
-    blank on most rows): (its cells, its numbers) under the first separator
-    that splits it into two numbers at least, making up at least half of
-    its non-empty cells; (0, 0) for a row of text."""
+def _split_counted(row: str):
+    """The row split by each separator in turn (comma, TAB, semicolon,
+    whitespace), trailing empty cells dropped: (cells, how many of its
+    non-empty cells are numbers, how many are non-empty) for each."""
     for sep in (",", "\t", ";", None):
         cells = [_unquote(c) for c in (row.split(sep) if sep else row.split())]
         while len(cells) > 1 and not cells[-1]:
@@ -244,9 +226,22 @@ def _data_cells(row: str) -> tuple:
                 nums += 1
             except ValueError:
                 pass
-        if nums >= 2 and 2 * nums >= len(filled):
-            return len(cells), nums
-    return 0, 0
+        yield cells, nums, len(filled)
+
+
+def _numeric_cells(row: str) -> int:
+    """The number of cells of a row that is all numbers (two at least) under
+    some separator, else 0."""
+    return next((len(cells) for cells, nums, _ in _split_counted(row) if len(cells) >= 2 and nums == len(cells)), 0)
+
+
+def _data_cells(row: str) -> tuple:
+    """A data row that may carry a column of words (a status, a comment,
+    blank on most rows): (its cells, its numbers) under the first separator
+    that splits it into two numbers at least, making up at least half of
+    its non-empty cells; (0, 0) for a row of text."""
+    return next(((len(cells), nums) for cells, nums, filled in _split_counted(row) if nums >= 2 and 2 * nums >= filled),
+                (0, 0))
 
 
 #: the content lines searched for the header under an instrument's preamble
