@@ -30,8 +30,8 @@ from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import lowpass, y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
-from lieng.diagnose.segment import (crop, drive_from_force, estimate_fn, find_cycles, head, prepare, reversal_ramp,
-                                    slip_seconds, stick_ratios, stick_slip_span)
+from lieng.diagnose.segment import (REVERSING_SHARE, crop, drive_from_force, estimate_fn, find_cycles, force_sides,
+                                    head, prepare, reversal_ramp, slip_seconds, stick_ratios, stick_slip_span)
 
 __all__ = ["CANDIDATES", "Diagnosis", "Record", "read_record", "record_from_arrays", "record_from_trc_deck",
            "diagnose", "FN_UNCERTAINTY"]
@@ -287,38 +287,33 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: a relative uncertainty between 0.001 and 0.5")
     if fn is None and fn_uncertainty != FN_UNCERTAINTY:
         raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: it is the uncertainty of a given --fn; give --fn")
-    inferred = unsigned = None
+    # a speed without a sign: only --v0 (a reciprocating rig without its stage's position), or a speed readout
+    # that is never negative (a drive that turns, its dwells at 0); the direction then from the force's side
+    speed = None
     if not rec.drive_recorded and rec.vd.size and np.all(rec.vd == rec.vd[0]):
-        # a reciprocating rig given only its speed: the strokes from the force's side
-        vd = drive_from_force(rec.x, abs(float(rec.vd[0])))
-        if vd is not None:
-            rec = dataclasses.replace(rec, vd=vd, notes=list(rec.notes), warnings=list(rec.warnings),
-                                      drive_from_force=True)
-            inferred = vd
+        speed = np.abs(rec.vd)
     elif rec.drive_recorded and rec.vd.size and np.all(rec.vd >= 0) and np.any(rec.vd > 0):
-        # a speed readout without its sign (a drive that turns, its dwells at 0): the sign from the force's side
-        side = drive_from_force(rec.x, 1.0)
-        if side is not None:
-            rec = dataclasses.replace(rec, vd=rec.vd * side, notes=list(rec.notes), warnings=list(rec.warnings),
-                                      drive_from_force=True)
-            unsigned = side
+        speed = rec.vd
+    side = drive_from_force(rec.x, 1.0) if speed is not None else None
+    if side is not None:
+        rec = dataclasses.replace(rec, vd=speed * side, notes=list(rec.notes), warnings=list(rec.warnings),
+                                  drive_from_force=True)
     pr = prepare(rec)
     notes = list(rec.notes) + list(pr.notes)
     warnings = list(rec.warnings)
-    if inferred is not None:
+    if rec.drive_from_force and not rec.drive_recorded:
         notes.append(f"the force changes side over the record and no drive was recorded: the drive is taken to "
-                     f"reverse where it does ({len(pr.strokes)} strokes at --v0 "
-                     f"{abs(float(inferred[inferred != 0][0])):g} mm/s: a reciprocating rig), each stroke starting "
-                     f"where the spring starts over to the other side (a dwell before it is read as moving); give "
-                     f"the stage's position to set the strokes and the dwells")
-    if unsigned is not None:
+                     f"reverse where it does ({len(pr.strokes)} strokes at --v0 {float(speed[0]):g} mm/s: a "
+                     f"reciprocating rig), each stroke starting where the spring starts over to the other side (a "
+                     f"dwell before it is read as moving); give the stage's position to set the strokes and the "
+                     f"dwells")
+    elif rec.drive_from_force:
         notes.append(f"the drive column is never negative while the force changes side: a speed readout without "
                      f"its sign, read with the force's side as the direction ({len(pr.strokes)} strokes); give a "
                      f"signed velocity or the stage's position to set them")
-    if not rec.drive_recorded and len(pr.strokes) == 1 and inferred is None:
-        big = float(np.max(np.abs(rec.x))) if rec.x.size else 0.0
-        neg, pos = (float(np.mean(rec.x < -0.2 * big)), float(np.mean(rec.x > 0.2 * big))) if big > 0 else (0.0, 0.0)
-        if min(neg, pos) > 0.2:
+    if not rec.drive_recorded and len(pr.strokes) == 1 and not rec.drive_from_force:
+        neg, pos = force_sides(rec.x)
+        if min(neg, pos) > REVERSING_SHARE:
             warnings.append(f"the force changes sign over long stretches ({100 * neg:.0f} % of the record below zero, "
                             f"{100 * pos:.0f} % above): a drive that reverses? With a constant drive (--v0) only the "
                             f"strokes in its direction are read as stick-slip: give the drive's position, or a signed "

@@ -338,6 +338,16 @@ REVERSING_LEVEL = 0.2
 CROSSING_RATIO = 3.0
 
 
+def force_sides(x) -> tuple[float, float]:
+    """The shares of the record whose force is below -REVERSING_LEVEL and
+    above +REVERSING_LEVEL of its largest size: (below, above)."""
+    x = np.asarray(x, float)
+    big = float(np.max(np.abs(x))) if x.size else 0.0
+    if not big > 0:
+        return 0.0, 0.0
+    return float(np.mean(x < -REVERSING_LEVEL * big)), float(np.mean(x > REVERSING_LEVEL * big))
+
+
 def drive_from_force(x, v0: float, min_samples: int = 20):
     """The drive's direction read from the friction force, for a record
     that gives only the drive's speed (``--v0``) while its force changes
@@ -364,9 +374,9 @@ def drive_from_force(x, v0: float, min_samples: int = 20):
     big = float(np.max(np.abs(x))) if n else 0.0
     if not (n >= 4 * min_samples and big > 0 and v0 > 0):
         return None
-    pos, neg = x > REVERSING_LEVEL * big, x < -REVERSING_LEVEL * big
-    if min(float(np.mean(pos)), float(np.mean(neg))) <= REVERSING_SHARE:
+    if min(force_sides(x)) <= REVERSING_SHARE:
         return None
+    pos, neg = x > REVERSING_LEVEL * big, x < -REVERSING_LEVEL * big
     lp, ln = float(np.median(x[pos])), float(np.median(x[neg]))
     mid, h = 0.5 * (lp + ln), 0.25 * (lp - ln)
     # the side by hysteresis: +1 above mid + h, -1 below mid - h, else the last side
