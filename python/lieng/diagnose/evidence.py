@@ -535,7 +535,7 @@ def hotelling_p(d, cov, dof: int) -> float:
     return float(fdtrc(2, dof, dof / (2.0 * (dof + 1)) * t2)) if math.isfinite(t2) else 1.0
 
 
-def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
+def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float, phase: bool = False):
     """The load modulation a line at ``f`` in x implies (the ``triggering``
     effect size on a physical scale where no normal force is recorded):
     the line's vector in the slips (each slip's own arc a + b tau +
@@ -550,9 +550,13 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     cluster-robust sandwich with each slip and each stick a cluster
     (:func:`slip_stick_lines`: any noise within a unit, white or not; a slow
     wander does not reach a line at f >> the stick-slip rate), T**2 referred
-    to F(2, n - 2).  (0, inf, 1) when too few slips."""
+    to F(2, n - 2).  (0, inf, 1) when too few slips.  With ``phase``, also
+    the modulation's phase ph (the load as 1 + epsilon sin(2 pi f t + ph) on
+    the record's times: the friction's line is x's times 1 - (f / fn)**2,
+    of either sign; 0 when too few slips)."""
+    none = (0.0, math.inf, 1.0) + ((0.0,) if phase else ())
     if not (f > 0 and c.n >= 5):
-        return 0.0, math.inf, 1.0
+        return none
     wn = 2 * math.pi * fn
     # a slip's own arc (a coarsely sampled slip, under 8 samples: without the trend); a quadratic in tau
     # beside it read the independent generators' sizes closer to their stated 3-8 % but cost the line's
@@ -561,7 +565,7 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
                                             + ([_scaled(tau)] if tau.size >= 8 else []))
     lines = slip_stick_lines(pr, c, pr.x, f, slip_cols, _stick_cols)
     if lines is None:
-        return 0.0, math.inf, 1.0
+        return none
     (b_slip, v_slip, n), (b_stick, v_stick, m) = lines
     _, _, F, _, _ = slip_friction(pr, c, fn)
     level = float(np.median(F)) if F.size else 0.0
@@ -572,7 +576,12 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float):
     eps = float(np.hypot(*d))
     u = d / eps if eps > 0 else np.array([1.0, 0.0])
     p = hotelling_p(d, cov, min(n, m) - 2)
-    return eps, float(math.sqrt(max(float(u @ cov @ u), 0.0))), p
+    out = (eps, float(math.sqrt(max(float(u @ cov @ u), 0.0))), p)
+    if phase:
+        # (sin, cos) coefficients: the friction's line (1 - (f/fn)**2) d, its phase that of the load
+        fl = d * math.copysign(1.0, 1.0 - (f / fn) ** 2)
+        out += (float(math.atan2(fl[1], fl[0])),)
+    return out
 
 
 def _stick_cols(tau):

@@ -55,7 +55,7 @@ import numpy as np
 from lieng.errors import LiengInputError
 from lieng.diagnose.baseline import (Params, characteristic, identify, level_to_trough, locked_load, model_drive,
                                      model_y, pr_like, run_slice, simulate, slip_friction)
-from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times
+from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times, trig_modulation
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
 
@@ -518,6 +518,19 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 kw.update(trig_ay=ay, trig_phy=phy)
             for sc in (0.0, 0.5, 1.0):
                 out.append(lvl(base.copy(trig_eps=sc * eps, trig_ph=ph, **kw)))
+            if not aux.get("y_is_force"):
+                # the modulation x's line implies in the training slips (less the sticks'), read on x itself
+                # (:func:`.evidence.trig_modulation`, the evidence's size): the reverse construction above is
+                # smoothed over a quarter natural period, which attenuates a line several times fn
+                e2, _, _, ph2 = trig_modulation(pr, subset(c, ctr_sel), fn, f_tr, D, phase=True)
+                if 0.0 < e2 < 1.0:
+                    for sc in (0.7, 1.4):
+                        out.append(lvl(base.copy(trig_eps=sc * e2, trig_ph=ph2, **kw)))
+                    # the phase at which the load sets the slips off, fitted on the training cycles: the line
+                    # in the slips gives the friction's phase there, but when a slip starts also depends on
+                    # what the record does not show (a sensor's lag, how the static limit follows the load)
+                    for j in range(8):
+                        out.append(lvl(base.copy(trig_eps=e2, trig_ph=ph2 + j * math.pi / 4, **kw)))
     elif effect == "drive_modulation":
         ts, r = _stick_series(pr, _subset(c, ctr_sel))
         per = c.periods(pr.t)

@@ -86,10 +86,15 @@ def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float =
     return float(f[k]), float(amp[k]), snr
 
 
-def line_fit(sig, t, f):
-    """Least squares sig ~ a + b t + A sin(2 pi f t + phase): (A, phase)."""
+def line_fit(sig, t, f, weights=None):
+    """Least squares sig ~ a + b t + A sin(2 pi f t + phase): (A, phase);
+    ``weights`` (>= 0, one per sample) weight the squares."""
     A = np.column_stack([np.ones(t.size), t - t.mean(), np.sin(2 * math.pi * f * t), np.cos(2 * math.pi * f * t)])
-    c = np.linalg.lstsq(A, sig, rcond=None)[0]
+    if weights is None:
+        c = np.linalg.lstsq(A, sig, rcond=None)[0]
+    else:
+        r = np.sqrt(weights)
+        c = np.linalg.lstsq(A * r[:, None], sig * r, rcond=None)[0]
     return float(math.hypot(c[2], c[3])), float(math.atan2(c[3], c[2]))
 
 
@@ -97,11 +102,15 @@ def refine_line(sig, t, f):
     """The frequency near ``f`` at which the least-squares line in ``sig``
     (on its own times ``t``: a record whose holds were cut keeps its phase)
     is largest: a quarter of a bin (1 / the span of t) over +-4 bins, then a
-    fortieth over +-1/4."""
+    fortieth over +-1/4.  The fit is weighted by a Hann window over the span
+    (as the spectrum the line was found in): unweighted, the leakage of the
+    stick-slip's own strong harmonics, whose sidelobes fall only as 1 / the
+    distance, can outweigh a weak line and move it by several bins."""
     T = max(float(t[-1] - t[0]), 1e-12)
+    wt = np.sin(math.pi * (t - t[0]) / T) ** 2
     for half, num in ((4.0, 33), (0.25, 21)):
         grid = f + np.linspace(-half, half, num) / T
-        f = float(max(grid, key=lambda g: line_fit(sig, t, g)[0]))
+        f = float(max(grid, key=lambda g: line_fit(sig, t, g, wt)[0]))
     return f
 
 
