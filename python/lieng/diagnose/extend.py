@@ -524,13 +524,15 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 # smoothed over a quarter natural period, which attenuates a line several times fn
                 e2, _, _, ph2 = trig_modulation(pr, subset(c, ctr_sel), fn, f_tr, D, phase=True)
                 if 0.0 < e2 < 1.0:
-                    for sc in (0.7, 1.4):
-                        out.append(lvl(base.copy(trig_eps=sc * e2, trig_ph=ph2, **kw)))
                     # the phase at which the load sets the slips off, fitted on the training cycles: the line
                     # in the slips gives the friction's phase there, but when a slip starts also depends on
                     # what the record does not show (a sensor's lag, how the static limit follows the load)
-                    for j in range(8):
-                        out.append(lvl(base.copy(trig_eps=e2, trig_ph=ph2 + j * math.pi / 4, **kw)))
+                    # (on the baseline's level: a modulation about 1 moves the mean trough little, and the
+                    # best is levelled again as it is refined, its size scaled; levelling each candidate
+                    # simulates the whole record several times)
+                    for j in range(1, 8):
+                        out.append(base.copy(trig_eps=e2, trig_ph=ph2 + j * math.pi / 4, **kw))
+                    out.append(lvl(base.copy(trig_eps=e2, trig_ph=ph2, **kw)))
     elif effect == "drive_modulation":
         ts, r = _stick_series(pr, _subset(c, ctr_sel))
         per = c.periods(pr.t)
