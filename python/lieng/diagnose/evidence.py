@@ -554,9 +554,9 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float, phas
     the modulation's phase ph (the load as 1 + epsilon sin(2 pi f t + ph) on
     the record's times: the friction's line is x's times 1 - (f / fn)**2,
     of either sign; 0 when too few slips)."""
-    none = (0.0, math.inf, 1.0) + ((0.0,) if phase else ())
+    empty = (0.0, math.inf, 1.0) + ((0.0,) if phase else ())
     if not (f > 0 and c.n >= 5):
-        return none
+        return empty
     wn = 2 * math.pi * fn
     # a slip's own arc (a coarsely sampled slip, under 8 samples: without the trend); a quadratic in tau
     # beside it read the independent generators' sizes closer to their stated 3-8 % but cost the line's
@@ -565,7 +565,7 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float, phas
                                             + ([_scaled(tau)] if tau.size >= 8 else []))
     lines = slip_stick_lines(pr, c, pr.x, f, slip_cols, _stick_cols)
     if lines is None:
-        return none
+        return empty
     (b_slip, v_slip, n), (b_stick, v_stick, m) = lines
     _, _, F, _, _ = slip_friction(pr, c, fn)
     level = float(np.median(F)) if F.size else 0.0
