@@ -68,12 +68,17 @@ def test_gain_is_measured_on_held_out_cycles():
     assert d.extended_error < d.baseline_error
 
 
-def test_gain_is_judged_at_both_ends_of_the_record():
-    """Two held-out parts: the record's last 30 % (models fitted on its first
+def test_gain_is_judged_at_both_ends_of_the_record_and_a_short_ones_middle(monkeypatch):
+    """Held-out parts: the record's last 30 % (models fitted on its first
     70 %) and its first 30 % (models fitted on its last 70 %), each with at
-    least three cycles; the same model on both sides gains exactly 0."""
+    least three cycles, and on a short record its middle in two parts, each
+    with the rest of the record training: the held-out parts tile the record,
+    every cycle's peak lies in exactly one of them and in none of its own
+    training parts; a long record holds out its two ends only.  The same
+    model on every side gains exactly 0."""
+    import lieng.diagnose.extend as ext_mod
     from lieng.diagnose.baseline import fit_baseline
-    from lieng.diagnose.extend import folds, gain_folds
+    from lieng.diagnose.extend import folds, gain_folds, window
     from lieng.diagnose.segment import find_cycles, prepare
 
     rec = synthesize("static_ageing", 0)
@@ -82,14 +87,43 @@ def test_gain_is_judged_at_both_ends_of_the_record():
     c = find_cycles(pr, rec.fn)
     parts = folds(pr, c)
     t0, t1 = float(pr.t[0]), float(pr.t[-1]) + pr.dt
-    assert len(parts) == 2
-    (a0, a1, h0, h1), (b0, b1, g0, g1) = parts
+    assert len(parts) == 4
+    (a0, a1, h0, h1), (b0, b1, g0, g1) = parts[:2]
     assert (a0, h1, b1, g0) == (t0, t1, t1, t0) and a1 == h0 and b0 == g1 and g1 < h0
+    tests = sorted((p[2], p[3]) for p in parts)
+    assert tests[0][0] == t0 and tests[-1][1] == t1 and all(u[1] == v[0] for u, v in zip(tests, tests[1:]))
     ts = pr.t[c.peak_i]
-    assert np.count_nonzero(ts >= h0) >= 3 and np.count_nonzero(ts < g1) >= 3
+    held = np.array([window(ts, p[2:]) for p in parts])
+    assert np.all(held.sum(axis=0) == 1) and held.sum(axis=1).min() >= 3
+    for p, h in zip(parts, held):
+        assert not np.any(window(ts, p) & h) and np.all(window(ts, p) | h)
     base = fit_baseline(pr, c, rec.fn)
-    g = gain_folds(pr, c, rec.fn, [(h0, h1, base, base), (g0, g1, base, base)])
-    assert g["parts"] == 2 and g["gain"] == 0.0 and g["e0"] > 0
+    g = gain_folds(pr, c, rec.fn, [(p[2], p[3], base, base) for p in parts])
+    assert g["parts"] == 4 and g["gain"] == 0.0 and g["e0"] > 0
+    monkeypatch.setattr(ext_mod, "MIDDLE_SAMPLES", pr.x.size - 1)
+    assert [p[2:] for p in folds(pr, c)] == [(h0, h1), (g0, g1)]
+
+
+def test_a_training_part_around_a_held_out_one_judges_the_cycles_within_its_pieces():
+    """A Judge on [lo, hi) less a held-out [a, b) judges the cycles of
+    [lo, a) and of [b, hi), none that spans the held-out part, and its
+    error is theirs pooled."""
+    from lieng.diagnose.baseline import fit_baseline
+    from lieng.diagnose.extend import Judge
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    rec = synthesize("none", 0)
+    pr = prepare(record_from_arrays(rec.t, rec.x, rec.v0_col if rec.v0_col is not None else rec.v0, rec.y))
+    c = find_cycles(pr, rec.fn)
+    base = fit_baseline(pr, c, rec.fn)
+    t0, t1 = float(pr.t[0]), float(pr.t[-1]) + pr.dt
+    a, b = t0 + 0.4 * (t1 - t0), t0 + 0.6 * (t1 - t0)
+    J = Judge(pr, c, rec.fn, t0, t1, gap=(a, b))
+    J1, J2 = Judge(pr, c, rec.fn, t0, a), Judge(pr, c, rec.fn, b, t1)
+    assert J.rec.shape[0] == J1.rec.shape[0] + J2.rec.shape[0] >= 6
+    assert not np.any(J.mask & (pr.t >= a) & (pr.t < b)) and np.all(J.mask == (J1.mask | J2.mask))
+    d, d1, d2 = J.vector(base)[0], J1.vector(base)[0], J2.vector(base)[0]
+    assert np.allclose(d, np.r_[d1, d2])
 
 
 def test_cli_writes_json_report_and_plots(tmp_path, capsys):
@@ -1036,6 +1070,36 @@ def test_each_prediction_starts_from_the_stick_line_not_a_rebound_below_it():
 
 
 
+def test_a_stick_that_creeps_before_its_slip_starts_from_its_trough(monkeypatch):
+    """A sawtooth whose sticks rise at the drive velocity from the trough
+    and creep for their last third (x at 0.2 of the drive velocity from
+    0.9 of the rise on, a rounded top): the state each prediction starts
+    from is the trough, where the 1-DoF slider arrested, read on the
+    stick's early part (:data:`.extend.START_PART`); the line through the
+    whole middle of the stick, the knee included, would start it 5 % of
+    the drop higher (geometry of the trace, plain NumPy)."""
+    import lieng.diagnose.extend as ext_mod
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    fn, v0, dt = 10.0, 1.0, 0.001
+    g = np.random.default_rng(3)
+    xs = []
+    for k in range(12):
+        rise = np.r_[np.arange(-0.25, 0.2, v0 * dt), np.arange(0.2, 0.25, 0.2 * v0 * dt)]
+        xs += [rise, 0.25 * np.cos(2 * np.pi * fn * np.arange(int(0.5 / fn / dt)) * dt)]
+    x = np.concatenate(xs)
+    t = dt * np.arange(x.size)
+    pr = prepare(record_from_arrays(t, x + 0.001 * g.standard_normal(x.size), v0))
+    c = find_cycles(pr, fn)
+    D = c.amplitude(pr.x)
+    ks = np.flatnonzero(c.next_ok)
+    assert ks.size >= 8
+    for k in ks:
+        assert ext_mod.stick_start(pr, c, int(k)) == pytest.approx(pr.x[c.trough_i[k]], abs=0.01 * D)
+    monkeypatch.setattr(ext_mod, "START_PART", (0.25, 0.875))
+    assert min(ext_mod.stick_start(pr, c, int(k)) - pr.x[c.trough_i[k]] for k in ks) > 0.03 * D
+
+
 def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, seconds=12.0, seed=0, load_of=None,
                     load_x=0.0, mode=None):
     """A Coulomb slider whose load is modulated, N (1 + eps sin(2 pi f t)), f = r fn (the
@@ -1698,20 +1762,18 @@ def test_a_fold_that_cannot_form_the_extension_holds_nothing_out_for_it(monkeypa
     real = dg._extend
     calls = []
 
-    def one_fold(formed_on):
-        def ext(k, base, train, pr, c, fn, st, aux, win, trough):
-            res = real(k, base, train, pr, c, fn, st, aux, win, trough)
-            i = len(calls)
-            calls.append(win)
-            return res if i % 2 in formed_on else (base, res[2], res[2], [])
-        return ext
+    def first_fold_only(k, base, train, pr, c, fn, st, aux, win, trough):
+        res = real(k, base, train, pr, c, fn, st, aux, win, trough)
+        calls.append(win)
+        # (the first fold trains up to where its held-out part begins)
+        return res if win[1] == win[2] else (base, res[2], res[2], [])
 
     d_all = run(rec)
     e_all = {e["effect"]: e for e in d_all.effects + d_all.detected}["static_ageing"]
-    monkeypatch.setattr(dg, "_extend", one_fold({0}))
+    monkeypatch.setattr(dg, "_extend", first_fold_only)
     d_first = run(rec)
     e_first = {e["effect"]: e for e in d_first.effects + d_first.detected}["static_ageing"]
-    assert len(calls) == 2
+    assert len(calls) >= 2 and sum(w[1] == w[2] for w in calls) == 1
     # the first fold alone: its own held-out errors, not diluted by a fold where the extension is the baseline
     assert e_first["gain"] > 0.3 and e_first["held_out_error_baseline"] != e_all["held_out_error_baseline"]
 

@@ -135,8 +135,9 @@ def build_parser() -> argparse.ArgumentParser:
                                     "candidate effect against the fitted baseline's own replicates (family-wise "
                                     "false-alarm rate 5 percent), fit the extension of each effect named and "
                                     "measure its gain on held-out cycles (the record's last 30 percent with "
-                                    "models fitted on its first 70, and its first 30 with models fitted on "
-                                    "its last 70).")
+                                    "models fitted on its first 70, its first 30 with models fitted on its "
+                                    "last 70 and, on a record of up to 250 000 samples, its middle with "
+                                    "models fitted on the rest).")
     dg.add_argument("data", nargs="?", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
                     "the header (F may be a friction coefficient mu or COF: times N when recorded; 'F [mN]', "
                     "'time/s', 'Time (s)', or a row of units; comma, semicolon, TAB or whitespace, a decimal comma, "

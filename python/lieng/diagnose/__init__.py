@@ -28,7 +28,7 @@ from lieng.diagnose.evidence import (CANDIDATES, MARGIN, ONE_SIDED, SLIDING, fn_
                                      statistics)
 from lieng.diagnose.goodness import RIG
 from lieng.diagnose.signals import lowpass, y_on_motion
-from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed
+from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed, window
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
 from lieng.diagnose.segment import (REVERSING_SHARE, crop, drive_from_force, estimate_fn, find_cycles, force_sides,
                                     head, prepare, reversal_ramp, slip_seconds, stick_ratios, stick_slip_span)
@@ -180,7 +180,7 @@ def _extend(k, base, train, pr, c, fn, st, aux, win, trough):
         errs = [train.error(p, bool(p.trig_ay)) for p in cands]
         if np.isfinite(min(errs)):
             ext = cands[int(np.argmin(errs))]
-            mask = (pr.t >= win[0]) & (pr.t < win[1])
+            mask = window(pr.t, win)
             ext, e_tr = refine(k, ext, base, train, pr, fn, mask, trough, ylow=aux.get("ylow"))
             if ext.trig_ay:           # the same metric for both: with the normal channel's unlocked part
                 e_train0 = train.error(base, True)
@@ -511,16 +511,18 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     named.sort(key=lambda k: -abs(rows[k]["effect_size"]) / MARGIN[k])
 
     # fit on the training part, judge on the rest: the record's end (models fitted on its first 70 %) and,
-    # where it has enough cycles, its beginning (models fitted on its last 70 %)
+    # where it has enough cycles, its beginning (models fitted on its last 70 %) and, on a short record, its
+    # middle (models fitted on the rest)
     parts = folds(pr, c)
     tsplit = parts[0][1]
     fold_models = []
-    for lo, hi, _, _ in parts:
-        sel = (pr.t[c.peak_i] >= lo) & (pr.t[c.peak_i] < hi)
+    for lo, hi, a, b_ in parts:
+        # (the training part: [lo, hi) less the held-out [a, b_), which lies beside it or within it)
+        sel = window(pr.t[c.peak_i], (lo, hi, a, b_))
         cf = subset(c, sel)
         b = fit_baseline(pr, cf, fn_used) if cf.n >= 3 else base_all
         b.y_c = base_all.y_c
-        fold_models.append((b, Judge(pr, c, fn_used, lo, hi, aux_ext["ylow"]), (lo, hi),
+        fold_models.append((b, Judge(pr, c, fn_used, lo, hi, aux_ext["ylow"], gap=(a, b_)), (lo, hi, a, b_),
                             _train_trough(pr, c, sel)))
     base = fold_models[0][0]
     effects = []

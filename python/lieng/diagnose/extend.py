@@ -5,7 +5,10 @@ the first 70 % (less when that would leave fewer than three cycles to test
 on), and judged on the rest; and, where each side keeps enough cycles, fitted
 again on the last 70 % and judged on the first 30 % (:func:`folds`: a record
 whose conditions change along it, a stepped drive or holds, is judged where
-they differ, not only where they end).  For each named effect a few candidates of the
+they differ, not only where they end); on a record of up to 250 000 samples
+the middle left between those two is held out too, in two parts each judged
+with the models fitted on the rest of the record, so that every cycle is
+held out once.  For each named effect a few candidates of the
 nested extension (the baseline plus that one term) are fitted on the
 training part from the evidence's estimate and the best on the training
 error kept.  Ageing's candidates include, when the sticks were loaded at
@@ -59,11 +62,12 @@ from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times, t
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
 
-__all__ = ["TRAIN", "METRIC", "split", "folds", "Judge", "candidates", "gain_folds", "unconfirmed"]
+__all__ = ["TRAIN", "METRIC", "split", "folds", "window", "Judge", "candidates", "gain_folds", "unconfirmed"]
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles (the record's last 30 % with models fitted on its "
-          "first 70 %, and its first 30 % with models fitted on its last 70 %; a fold whose training part cannot form "
+          "first 70 %, and its first 30 % with models fitted on its last 70 %; on a record of up to 250 000 samples "
+          "also its middle, in two parts each with models fitted on the rest; a fold whose training part cannot form "
           "the extension is left out), one cycle ahead from the record's own state (from "
           "each trough): stick time to the next slip's halfway crossing (/ mean period), peak and trough (/ drop D); "
           "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing, those "
@@ -98,10 +102,17 @@ def split(pr: Prepared, c: Cycles) -> float:
 def folds(pr: Prepared, c: Cycles) -> list:
     """The held-out parts the gain is measured on, each with the training
     part its models are fitted on: (train_lo, train_hi, test_lo, test_hi)
-    in seconds.  The record's end (the first 70 % trains, as :func:`split`)
-    and, when each side keeps at least three cycles, its beginning (the last
-    70 % trains): a record whose conditions change along it (a stepped drive,
-    holds) is judged where they differ, not only where they end."""
+    in seconds, the training part being [train_lo, train_hi) less the
+    held-out part (:func:`window`).  The record's end (the first 70 % trains,
+    as :func:`split`) and, when each side keeps at least three cycles, its
+    beginning (the last 70 % trains): a record whose conditions change along
+    it (a stepped drive, holds) is judged where they differ, not only where
+    they end.  On a record of at most :data:`MIDDLE_SAMPLES` samples the
+    middle left between them is held out too, in two parts of at least
+    :data:`MIDDLE_CYCLES` cycles each (or one), each with the rest of the
+    record training: every cycle is then held out once, with 80 % of a
+    short record still training (a short record's gain rests on few
+    cycles; a long one's ends hold out enough)."""
     t0, t1 = float(pr.t[0]), float(pr.t[-1]) + pr.dt
     ts = pr.t[c.peak_i]
     fwd = split(pr, c)
@@ -111,7 +122,33 @@ def folds(pr: Prepared, c: Cycles) -> list:
         back = float(ts[3 if ts.size >= 8 else 2]) + 0.5 * pr.dt
     if np.count_nonzero(ts < back) >= 4 and np.count_nonzero(ts >= back) >= 3:
         out.append((back, t1, t0, back))
+        mid = ts[(ts >= back) & (ts < fwd)]
+        if pr.x.size <= MIDDLE_SAMPLES and mid.size >= MIDDLE_CYCLES:
+            if mid.size >= 2 * MIDDLE_CYCLES:
+                # (between the two peaks that halve the middle's cycles)
+                h = mid.size // 2
+                cut = 0.5 * float(mid[h - 1] + mid[h])
+                out += [(t0, t1, back, cut), (t0, t1, cut, fwd)]
+            else:
+                out.append((t0, t1, back, fwd))
     return out
+
+
+#: the middle of a record of at most this many samples is held out too (:func:`folds`)
+MIDDLE_SAMPLES = 250_000
+#: the fewest cycles a middle held-out part holds
+MIDDLE_CYCLES = 4
+
+
+def window(t, win) -> np.ndarray:
+    """Which of the times ``t`` lie in the window ``win``: (lo, hi), or
+    (lo, hi, a, b) for [lo, hi) less [a, b) (a training part around a
+    held-out one)."""
+    t = np.asarray(t)
+    m = (t >= win[0]) & (t < win[1])
+    if len(win) > 2:
+        m &= ~((t >= win[2]) & (t < win[3]))
+    return m
 
 
 #: instants of the mean slip waveform the Judge compares
@@ -145,14 +182,20 @@ def _slip(t, x, i0: int, i1: int, tau):
     return h[0], np.interp(tt, t, x) - h[1]
 
 
+#: the part of a stick its start is read on (:func:`stick_start`): past a rebound after the arrest, before a
+#: creeping top
+START_PART = (0.3, 0.6)
+
+
 def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> float:
     """The record's state at the start of stick ``k`` (trough ``k`` to peak
     ``k + 1``): the stick line's level at the trough, x read against the
-    drive's travel over the stick's middle (:data:`.segment.STICK_PART`, the
-    part :func:`.segment.stick_ratios` reads).  A rig that rings or
-    rebounds after the arrest (a second mode, a contact lag) puts its trough
-    below the level the stick then rises from; the 1-DoF slider arrests at
-    that level.  The travel is that of the drive the model ``p`` runs on
+    drive's travel over the stick's early middle (:data:`START_PART`).  A
+    rig that rings or rebounds after the arrest (a second mode, a contact
+    lag) puts its trough below the level the stick then rises from; the
+    1-DoF slider arrests at that level.  (Not read further into the stick:
+    a stick that creeps before its slip, its top rounded, would lean the
+    line and raise its level above the trough it rose from.)  The travel is that of the drive the model ``p`` runs on
     (:func:`.baseline.model_drive`: a modulated drive's own, so that a model
     of the modulation reads the stick on its own drive); the record's drive
     when ``p`` is None.  The trough itself when the stick is too short for a
@@ -165,7 +208,7 @@ def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> flo
     the level G's inverse of the line's (a straight line when c1 is 0: the
     same level)."""
     a, b = int(c.trough_i[k]), int(c.peak_i[k + 1])
-    seg = stick_part(c, k)
+    seg = stick_part(c, k, START_PART)
     x0 = float(pr.x[a])
     if seg.size < 8:
         return x0
@@ -222,8 +265,11 @@ class Judge:
     #: at most this many cycles are judged (an even subset; linear time)
     MAX_CYCLES = 200
 
-    def __init__(self, pr: Prepared, c: Cycles, fn: float, lo: float, hi: float, ylow=None):
+    def __init__(self, pr: Prepared, c: Cycles, fn: float, lo: float, hi: float, ylow=None, gap=None):
         self.pr, self.fn, self.lo, self.hi, self.ylow = pr, fn, lo, hi, ylow
+        # [lo, hi) less the held-out part ``gap`` (a, b) when the training part lies around it: a cycle is
+        # judged when it lies within one piece
+        win = (lo, hi) if gap is None else (lo, hi, *gap)
         self.c = c
         self.D = c.amplitude(pr.x)
         per = c.periods(pr.t)
@@ -235,6 +281,8 @@ class Judge:
         # starts it) through the reversal and its dwell, where ageing shows on such a rig
         self.from_stroke = len(pr.strokes) > 1 and k.size < np.unique(c.stroke).size
         k = k[(pr.t[c.trough_i[k]] >= lo) & (pr.t[c.peak_i[k + 1]] < hi)]
+        if gap is not None:
+            k = k[(pr.t[c.peak_i[k + 1]] < gap[0]) | (pr.t[c.trough_i[k]] >= gap[1])]
         if k.size > self.MAX_CYCLES:
             k = k[np.linspace(0, k.size - 1, self.MAX_CYCLES).astype(int)]
         ends = np.array([sl.stop for sl in pr.stroke_slices()])
@@ -249,6 +297,8 @@ class Judge:
             first = np.array([int(np.flatnonzero(c.stroke == s)[0]) for s in np.unique(c.stroke)], int)
             j0 = np.array([pr.strokes[int(c.stroke[j])].j0 for j in first], int)
             keep = (pr.t[j0] >= lo) & (pr.t[c.trough_i[first]] < hi) & (c.peak_i[first] > j0)
+            if gap is not None:
+                keep &= (pr.t[c.trough_i[first]] < gap[0]) | (pr.t[j0] >= gap[1])
             first, j0 = first[keep][:self.MAX_CYCLES], j0[keep][:self.MAX_CYCLES]
             i0, tgt = np.r_[i0, j0].astype(int), np.r_[tgt, first].astype(int)
             self.start += [float(pr.x[a]) for a in j0]
@@ -283,7 +333,7 @@ class Judge:
         if edges:
             a, b = np.median(np.asarray(edges), axis=0)
             self.wave[(self.tau < a) | (self.tau > b)] = np.nan
-        self.mask = (pr.t >= lo) & (pr.t < hi)
+        self.mask = window(pr.t, win)
         if pr.y is not None:
             ys = pr.y[self.mask]
             self.ysd = float(np.std(ys)) if ys.size > 2 and np.std(ys) > 0 else 1.0
@@ -398,10 +448,10 @@ def _branches(base: Params, pr: Prepared, c: Cycles, fn: float, sel) -> Params |
 def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st: dict, aux: dict,
                train: tuple) -> list:
     """Extended models for ``effect`` (the baseline plus one term), from the
-    evidence on the training part ``train`` ((lo, hi) seconds)."""
-    lo, hi = train
-    tr_mask = (pr.t >= lo) & (pr.t < hi)
-    ctr_sel = (pr.t[c.peak_i] >= lo) & (pr.t[c.peak_i] < hi)
+    evidence on the training part ``train`` ((lo, hi) seconds, or (lo, hi,
+    a, b) for [lo, hi) less [a, b): :func:`window`)."""
+    tr_mask = window(pr.t, train)
+    ctr_sel = window(pr.t[c.peak_i], train)
     target = float(np.mean(pr.x[c.trough_i[ctr_sel]])) if np.any(ctr_sel) else float(np.mean(pr.x[c.trough_i]))
     D = aux["D"]
     Fbar = max(float(np.median(base.fg)), 1e-12)
