@@ -12,7 +12,8 @@ from lieng.errors import LiengInputError
 from lieng.cli.common import _is_table
 
 
-def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None, progress=None, rate=None):
+def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None, progress=None, rate=None,
+                     highpass=None):
     """Read one record (a table, or a TRC deck whose OMNH gives fn) and
     diagnose it: what ``lieng diagnose RECORD`` computes (also a task of
     ``diagnose --batch``).  Returns the :class:`lieng.diagnose.Diagnosis`."""
@@ -20,8 +21,10 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
     from lieng.diagnose.read import check_fn
 
     if _is_table(data):
-        rec = read_record(data, v0=v0, stiffness=stiffness, rate=rate)
+        rec = read_record(data, v0=v0, stiffness=stiffness, rate=rate, highpass=highpass)
     else:                                   # a thesis-style TRC deck: OMNH gives fn
+        if highpass is not None:
+            raise LiengInputError(f"--highpass: applies to a table, not to a TRC deck ({data})")
         rec, fn_deck = record_from_trc_deck(data, v0)
         if fn is None and fn_deck is not None:
             check_fn(rec, fn_deck, f"{data}: card OMNH ({fn_deck:g} Hz, the deck's natural frequency)",
@@ -59,7 +62,8 @@ def _diagnose(args) -> int:
         def progress(k, n):
             print(f"\rcalibrating against the baseline: replicate {k}/{n}", end="" if k < n else "\n",
                   file=sys.stderr, flush=True)
-    d = _diagnose_record(args.data, args.fn, args.v0, args.stiffness, args.fn_uncertainty, progress, args.rate)
+    d = _diagnose_record(args.data, args.fn, args.v0, args.stiffness, args.fn_uncertainty, progress, args.rate,
+                         args.highpass)
     names = _write_diagnosis(d, args.outdir, args.force, str(args.data), not args.no_plots)
     if args.json:
         print(dumps_json(d.to_json(), indent=2))
@@ -118,7 +122,8 @@ def _diagnose_batch(args) -> int:
     check_outdir(args.outdir, args.force)
     recs = _batch_records(args.batch)
     show = sys.stderr.isatty() and not args.quiet
-    tasks = [(str(r), args.fn, args.v0, args.stiffness, args.fn_uncertainty, None, args.rate) for r in recs]
+    tasks = [(str(r), args.fn, args.v0, args.stiffness, args.fn_uncertainty, None, args.rate, args.highpass)
+             for r in recs]
     rows, lines, errors = [None] * len(recs), [None] * len(recs), []
     with staged_outdir(args.outdir, args.force, keep=[r.stem for r in recs]) as tmp:
         with open_executor(args.workers, args.scheduler, tasks=len(recs)) as ex:

@@ -154,6 +154,10 @@ def build_parser() -> argparse.ArgumentParser:
                     "column (its rows are then evenly spaced samples)")
     dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record; estimated from the sticks when not given")
+    dg.add_argument("--highpass", type=float, metavar="TAU_S", help="the friction channel was recorded AC-coupled "
+                    "(a piezoelectric force cell's charge amplifier): the time constant (s) of its high-pass, "
+                    "undone before the diagnosis (a steady force otherwise sinks towards zero, read as a drifting "
+                    "friction)")
     dg.add_argument("--batch", metavar="DIR", help="diagnose every record in DIR (*.csv, *.txt, *.dat, *.xlsx, *.mat, *.npz; the options "
                     "above apply to each) into OUTDIR/<record>/, with a summary in OUTDIR/batch.csv; status 1 when "
                     "a record failed (the others are still written)")

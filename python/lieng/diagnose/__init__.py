@@ -552,6 +552,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
                                 "p": r["p"], "z": r["z"], "gain": g["gain"], "gain_interval_90": g["interval"],
                                 "held_out_error_baseline": g["e0"], "held_out_error_extended": g["e1"],
+                                "gain_explainable": g["gain_explainable"],
+                                "gain_explainable_interval_90": g["interval_explainable"],
+                                "held_out_scatter_share": g["scatter_share"],
                                 "training_improvement": imp,
                                 "extension": "fitted" if ext is not base else
                                 ("none better than the baseline on the training part" if cands else
@@ -585,6 +588,14 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                      + ("the one that accounts for the other better" if first is not None else
                         "the one whose extension explains more of the training part"))
     effects.sort(key=lambda e: named.index(e["effect"]))
+    if ("friction_drift" in named or any(e["effect"] == "friction_drift" for e in detected)) and \
+            not any("high-pass" in n for n in rec.notes):
+        # a sensor that drifts moves the whole record as a drifting friction level does
+        force = rec.stiffness is not None or rec.stiffness_unknown
+        warnings.append("the friction level drifts in this record; a sensor that drifts moves it alike (a bridge's "
+                        "offset with temperature" + (", an AC-coupled force cell's output sinking towards zero: a "
+                        "piezoelectric cell's charge amplifier is a high-pass, which --highpass TAU undoes" if force
+                        else "") + "): check the sensor before reading it as the friction's")
     primary_ext, primary_gain = (fitted[named[0]][0], fitted[named[0]][1]) if named else (base, None)
     g0 = primary_gain or gain_folds(pr, c, fn_used, [(p[2], p[3], m[0], m[0]) for p, m in zip(parts, fold_models)],
                                     aux_ext["ylow"])

@@ -391,6 +391,22 @@ class Judge:
         e2 = _msq(d) + _msq(dw) + (ey * ey if ey is not None else 0.0)
         return float(math.sqrt(e2))
 
+    def scatter(self) -> np.ndarray:
+        """The record's own cycle-to-cycle scatter in each per-cycle quantity
+        (stick time, peak, trough, as compared): half the mean square
+        difference between successive cycles within a stroke (von Neumann's
+        estimate: a trend or a slow modulation drops out of it, white scatter
+        does not); inf for a quantity with fewer than three such pairs."""
+        k, r = self._k, self.rec[:self._k.size]
+        nxt = np.flatnonzero(np.diff(k) == 1)
+        out = np.full(3, np.inf)
+        if nxt.size >= 3:
+            d = r[nxt + 1] - r[nxt]
+            ok = np.all(np.isfinite(d), axis=1)
+            if np.count_nonzero(ok) >= 3:
+                out = 0.5 * np.mean(d[ok] ** 2, axis=0)
+        return out
+
     def error(self, p: Params, with_y: bool = False) -> float:
         """The error of ``p`` (inf when it cannot be judged)."""
         v = self.vector(p, with_y)
@@ -631,7 +647,17 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
     test_hi, base, ext).  e**2 is the cycle-weighted mean over the parts of
     each part's squared error (:meth:`Judge.combine`); gain = 1 - e_ext /
     e_base with a 90 % interval from resampling the held-out cycles within
-    each part.  The traces (``x_base``, ``x_ext``) are the first fit's."""
+    each part.  Beside it, ``gain_explainable``: the same on the part of
+    the squares a model can remove, each less the record's own
+    cycle-to-cycle scatter in the per-cycle quantities
+    (:meth:`Judge.scatter`, capped at either model's own error variance
+    there, so that it is never more than either leaves), with its interval
+    and ``scatter_share``, that scatter's share of e_base**2: on a record
+    whose sticks scatter at random (a random breakaway) the whole-error gain
+    of an extension that removes what it can is small, and the two together
+    say so.  Both have the sign of e_base - e_ext, resample by resample
+    (the named test, :func:`unconfirmed`, reads the first).  The traces
+    (``x_base``, ``x_ext``) are the first fit's."""
     parts = []
     for lo, hi, base, ext in fits:
         J = Judge(pr, c, fn, lo, hi, ylow)
@@ -642,19 +668,36 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
             parts.append((J, vb, ve, ext is not base))
     base, ext = fits[0][2], fits[0][3]
     if not parts:
-        return dict(e0=0.0, e1=0.0, gain=0.0, interval=[0.0, 0.0], x_base=None, x_ext=None, parts=0)
+        return dict(e0=0.0, e1=0.0, gain=0.0, interval=[0.0, 0.0], x_base=None, x_ext=None, parts=0,
+                    gain_explainable=0.0, interval_explainable=[0.0, 0.0], scatter_share=0.0)
     n = np.array([vb[0].shape[0] for _, vb, _, _ in parts], float)
     w = n / n.sum()
 
-    def errors(picks=None):
-        e0 = e1 = 0.0
+    vn = [J.scatter() for J, _, _, _ in parts]
+
+    def errors(picks=None, floor=False):
+        e0 = e1 = f = 0.0
         for j, (J, vb, ve, _) in enumerate(parts):
             rows = None if picks is None else picks[j]
             e0 += w[j] * J.combine(*vb, rows=rows) ** 2
             e1 += w[j] * J.combine(*ve, rows=rows) ** 2
+            if floor:
+                # the part of the per-cycle squares no model can remove: the record's own scatter, at most
+                # either model's own error variance in each quantity (the squares stay above it)
+                db, de = (v[0] if rows is None else v[0][rows] for v in (vb, ve))
+                with np.errstate(invalid="ignore"):
+                    fl = np.minimum(vn[j], np.minimum(np.nanvar(db, axis=0), np.nanvar(de, axis=0)))
+                f += w[j] * float(np.mean(np.where(np.isfinite(fl), fl, 0.0)))
+        if floor:
+            return max(e0 - f, 0.0), max(e1 - f, 0.0), f, e0
         return math.sqrt(e0), math.sqrt(e1)
 
+    def explained(picks=None):
+        a, b, f, e0 = errors(picks, floor=True)
+        return (1.0 - math.sqrt(b / a) if a > 0 else 0.0), (f / e0 if e0 > 0 else 0.0)
+
     e0, e1 = errors()
+    gx, share = explained()
     try:
         x_base = simulate(pr, base, fn, ylow)[0]
         x_ext = simulate(pr, ext, fn, ylow)[0] if ext is not base else x_base
@@ -663,16 +706,21 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
     g = 1.0 - e1 / e0 if e0 > 0 else 0.0
     # interval: resample the held-out cycles (each with its one-cycle-ahead prediction), part by part
     rng = np.random.default_rng(seed)
-    gs = []
+    gs, gxs = [], []
     if np.all(n >= 3) and any(p[3] for p in parts):
         for _ in range(nboot):
-            a, b = errors([rng.integers(0, int(m), int(m)) for m in n])
+            picks = [rng.integers(0, int(m), int(m)) for m in n]
+            a, b = errors(picks)
             if a > 0:
                 gs.append(1.0 - b / a)
+                gxs.append(explained(picks)[0])
     iv = [float(np.percentile(gs, 5)), float(np.percentile(gs, 95))] if len(gs) >= 20 else [g, g]
+    ivx = [float(np.percentile(gxs, 5)), float(np.percentile(gxs, 95))] if len(gxs) >= 20 else [gx, gx]
     g = float(np.clip(g, -1e6, 1.0))
-    return dict(e0=e0, e1=e1, gain=g, interval=[float(np.clip(v, -1e6, 1.0)) for v in iv], x_base=x_base,
-                x_ext=x_ext, parts=len(parts))
+    clip = lambda v: float(np.clip(v, -1e6, 1.0))
+    return dict(e0=e0, e1=e1, gain=g, interval=[clip(v) for v in iv], x_base=x_base,
+                x_ext=x_ext, parts=len(parts), gain_explainable=clip(gx), interval_explainable=[clip(v) for v in ivx],
+                scatter_share=float(share))
 
 
 def unconfirmed(g: dict, has_candidates: bool, direct: bool = False) -> str | None:

@@ -334,7 +334,8 @@ def _drive_from_position(pos, dt, notes):
     return _smooth_derivative(pos, dt, win)
 
 
-def read_record(path, v0: float | None = None, stiffness: float | None = None, rate: float | None = None) -> Record:
+def read_record(path, v0: float | None = None, stiffness: float | None = None, rate: float | None = None,
+                highpass: float | None = None) -> Record:
     """Read a displacement or force record (see the module docstring).
 
     Parameters
@@ -349,6 +350,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     rate : float, optional
         Sampling rate (Hz) of a table without a time column (its rows are
         evenly spaced samples); ignored, and said, when there is one.
+    highpass : float, optional
+        The time constant (s) of a first-order high-pass the friction
+        channel went through (an AC-coupled sensor: a piezoelectric force
+        cell's charge amplifier), undone (:func:`undo_highpass`).
 
     Returns
     -------
@@ -359,6 +364,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     LiengInputError
         Naming the line and column, or the option, of bad input.
     """
+    _check_highpass(highpass)
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
                      missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None,
@@ -528,7 +534,38 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                  stiffness_unit="Pa/m" if "F" in cols and _is_stress(units["F"]) else
                  "1/m" if mu_note and "N" not in cols else "N/m")
     condition(out)
+    if highpass is not None:
+        undo_highpass(out, highpass)
     return out
+
+
+def _check_highpass(tau) -> None:
+    if tau is not None and not (math.isfinite(tau) and tau > 0):
+        _fail(f"--highpass {tau:g}: the high-pass time constant must be a positive number of seconds")
+
+
+def undo_highpass(rec: Record, tau: float) -> None:
+    """Undo, in place, a first-order high-pass of time constant ``tau`` (s)
+    on the friction channel x: an AC-coupled sensor (a piezoelectric force
+    cell's charge amplifier) records y with y' = x' - y / tau, so that a
+    steady force sinks towards zero and each stick's ramp sags; the force is
+    x = y + (1 / tau) * (the integral of y from the record's start)
+    (trapezoid, on the record's times), with a note.  The constant of the
+    integration, the decay that had built up before the record started, is
+    not known: x keeps the record's own level at its start (a constant
+    offset, which moves no effect's evidence).  After spikes and hum are
+    taken out (:func:`condition`): a spike integrated would be a step."""
+    _check_highpass(tau)
+    y = rec.x
+    if tau < 5.0 * rec.dt:
+        _fail(f"--highpass {tau:g}: shorter than 5 sampling intervals ({rec.dt:.3g} s): such a high-pass leaves "
+              f"nothing of the stick-slip to recover")
+    integ = np.r_[0.0, np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(rec.t))]
+    rec.x = y + integ / tau
+    span = float(rec.t[-1] - rec.t[0])
+    rec.notes.append(f"the friction channel's high-pass (an AC-coupled sensor, time constant {tau:g} s, "
+                     f"{span / tau:.3g} of it over the record) undone: x = the recorded x + its integral from the "
+                     f"record's start / {tau:g} s (the level at the start kept as recorded)")
 
 
 #: a channel sits at its extreme value on at least this fraction of its samples (and 10) to be questioned
@@ -594,9 +631,10 @@ def _stamps_quantised(t):
     return icpt + slope * i, q
 
 
-def record_from_arrays(t, x, v0, y=None, *, y_is_force=False, source="arrays") -> Record:
+def record_from_arrays(t, x, v0, y=None, *, y_is_force=False, source="arrays", highpass=None) -> Record:
     """A record from arrays: t (s), x (mm), v0 (mm/s: a number or an array per
-    sample), optional normal channel y.  Resampled and conditioned like a file."""
+    sample), optional normal channel y.  Resampled and conditioned like a file
+    (``highpass``: as :func:`read_record`'s)."""
     t = np.asarray(t, float)
     x = np.asarray(x, float)
     if t.shape != x.shape or t.ndim != 1 or t.size < MIN_SAMPLES:
@@ -616,6 +654,8 @@ def record_from_arrays(t, x, v0, y=None, *, y_is_force=False, source="arrays") -
     out = Record(t=rec["t"], x=rec["x"], vd=vd, y=rec["y"], y_is_force=y_is_force, drive_recorded=vcol is not None,
                  source=source, notes=notes)
     condition(out)
+    if highpass is not None:
+        undo_highpass(out, highpass)
     return out
 
 

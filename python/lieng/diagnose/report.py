@@ -57,7 +57,8 @@ def _effect_row(e: dict) -> str:
     return (f"| {e['effect']} | {_f(e['effect_size'], '+.4g')} | {_f(iv[0], '+.3g')} to {_f(iv[1], '+.3g')} | "
             f"{_f(e['p'], '.2g')} | {_f(e.get('held_out_error_baseline'), '.3g')} | "
             f"{_f(e.get('held_out_error_extended'), '.3g')} | {_f(e['gain'], '.3f')} | {_f(gi[0], '.2f')} to "
-            f"{_f(gi[1], '.2f')} |")
+            f"{_f(gi[1], '.2f')} | {_f(e.get('held_out_scatter_share'), '.2f')} | "
+            f"{_f(e.get('gain_explainable'), '.3f')} |")
 
 
 def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
@@ -121,7 +122,11 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
                   "The held-out errors are in the metric's units (fractions of the drop D and of the mean period): "
                   "a baseline that already predicts the held-out cycles within the record's own scatter leaves "
                   "an extension nothing to gain, however real the effect (a load that follows the motion the same "
-                  "way in every cycle is carried by the characteristic the baseline reads from the record)."]),
+                  "way in every cycle is carried by the characteristic the baseline reads from the record). "
+                  "Scatter: the share of the baseline's squared held-out error that is the record's own "
+                  "cycle-to-cycle scatter (half the mean square difference of successive cycles' stick times, "
+                  "peaks and troughs, at most either model's error variance), which no model removes; gain of "
+                  "the rest: the gain on the squares less it."]),
                 ("Detected, not named", d.detected,
                  ["Significant and above their margin, but their extension does not predict the held-out cycles "
                   "better than the baseline (the gain's 90 % interval not above 0): the record departs from the "
@@ -130,8 +135,9 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
         if not rows:
             continue
         lines += [f"## {title}", "", *intro, "",
-                  "| effect | size | 95 % interval | p | held-out error: baseline | extended | gain | 90 % interval |",
-                  "|---|---|---|---|---|---|---|---|", *map(_effect_row, rows), ""]
+                  "| effect | size | 95 % interval | p | held-out error: baseline | extended | gain | 90 % interval "
+                  "| scatter | gain of the rest |",
+                  "|---|---|---|---|---|---|---|---|---|---|", *map(_effect_row, rows), ""]
     if d.baseline is not None:
         b = d.baseline
         lines += ["## Baseline (the thesis's 1-DoF model, fitted on the training part)", "",
