@@ -995,6 +995,18 @@ def _sawtooth_sticks(vs_of, fn=10.0, dt=0.001, n=12):
     return np.array(t_list), np.array(x_list), np.array(v_list)
 
 
+def _noisy_cycles(t, x, vd, fn, g):
+    """A plain-NumPy trace with noise of 0.001 added, prepared: (the record,
+    its cycles, the drop D, the sticks between two slips, at least 8)."""
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    pr = prepare(record_from_arrays(t, x + 0.001 * g.standard_normal(x.size), vd))
+    c = find_cycles(pr, fn)
+    ks = np.flatnonzero(c.next_ok)
+    assert ks.size >= 8
+    return pr, c, c.amplitude(pr.x), ks
+
+
 def test_each_prediction_starts_from_the_stick_line_not_a_rebound_below_it():
     """A sawtooth whose arrests rebound (a second mode: after every trough
     x rings back up, 0.1 D below the stick line at the trough and decaying
@@ -1021,11 +1033,7 @@ def test_each_prediction_starts_from_the_stick_line_not_a_rebound_below_it():
         return vs
 
     t, x0, vd = _sawtooth_sticks(drive, fn)
-    pr0 = prepare(record_from_arrays(t, x0 + 0.001 * g.standard_normal(x0.size), vd))
-    c = find_cycles(pr0, fn)
-    D = c.amplitude(pr0.x)
-    ks = np.flatnonzero(c.next_ok)
-    assert ks.size >= 8
+    pr0, c, D, ks = _noisy_cycles(t, x0, vd, fn, g)
     for k in ks:
         assert stick_start(pr0, c, int(k)) == pytest.approx(pr0.x[c.trough_i[k]], abs=0.02 * D)
     x = x0.copy()
@@ -1082,7 +1090,6 @@ def test_a_stick_that_creeps_before_its_slip_starts_from_its_trough(monkeypatch)
     whole middle of the stick, the knee included, would start it 5 % of
     the drop higher (geometry of the trace, plain NumPy)."""
     import lieng.diagnose.extend as ext_mod
-    from lieng.diagnose.segment import find_cycles, prepare
 
     fn, v0, dt = 10.0, 1.0, 0.001
     g = np.random.default_rng(3)
@@ -1091,12 +1098,7 @@ def test_a_stick_that_creeps_before_its_slip_starts_from_its_trough(monkeypatch)
         rise = np.r_[np.arange(-0.25, 0.2, v0 * dt), np.arange(0.2, 0.25, 0.2 * v0 * dt)]
         xs += [rise, 0.25 * np.cos(2 * np.pi * fn * np.arange(int(0.5 / fn / dt)) * dt)]
     x = np.concatenate(xs)
-    t = dt * np.arange(x.size)
-    pr = prepare(record_from_arrays(t, x + 0.001 * g.standard_normal(x.size), v0))
-    c = find_cycles(pr, fn)
-    D = c.amplitude(pr.x)
-    ks = np.flatnonzero(c.next_ok)
-    assert ks.size >= 8
+    pr, c, D, ks = _noisy_cycles(dt * np.arange(x.size), x, v0, fn, g)
     for k in ks:
         assert ext_mod.stick_start(pr, c, int(k)) == pytest.approx(pr.x[c.trough_i[k]], abs=0.01 * D)
     monkeypatch.setattr(ext_mod, "START_PART", (0.25, 0.875))

@@ -13,7 +13,7 @@ record.
 
     python tests/benchmarks/bench_diagnose.py [--seeds 8] [--only lugre,synth] [--cases none,twin_branch]
                                               [--json out.json] [--fn-uncertainty 0.01]
-                                              [--nuisances spikes,hum]
+                                              [--nuisances spikes,hum] [--highpass-known]
 """
 
 from __future__ import annotations
@@ -113,18 +113,22 @@ def parse_args(args):
     return p.parse_args(args)
 
 
-def run_one(truth, fn_uncertainty=None):
+def run_one(truth, fn_uncertainty=None, highpass_known=False):
     """Diagnose one generator record as a user would.  ``fn_uncertainty``:
     a user who measured fn to this relative uncertainty passes it with
     --fn-uncertainty (only where the given fn is in fact that close to the
-    generator's true fn; otherwise the default)."""
+    generator's true fn; otherwise the default).  ``highpass_known``: a
+    user who knows the time constant of an AC-coupled force channel (a
+    charge amplifier's, the generator's ``params["tau_ca_s"]``) passes it
+    with --highpass."""
     from lieng.diagnose import diagnose, read_record
     from lieng.errors import LiengInputError
 
     a = parse_args(truth["args"])
     t0 = time.perf_counter()
     try:
-        rec = read_record(truth["file"], v0=a.v0, stiffness=a.stiffness)
+        tau = truth.get("params", {}).get("tau_ca_s") if highpass_known else None
+        rec = read_record(truth["file"], v0=a.v0, stiffness=a.stiffness, highpass=tau)
         kw = {}
         if fn_uncertainty and a.fn and truth.get("fn_true") and \
                 abs(a.fn / truth["fn_true"] - 1.0) <= fn_uncertainty:
@@ -190,6 +194,9 @@ def main(argv=None):
     ap.add_argument("--fn-uncertainty", type=float, default=None,
                     help="pass it with --fn on the records whose given fn is within it of the true fn (what a "
                          "better-measured fn buys)")
+    ap.add_argument("--highpass-known", action="store_true",
+                    help="pass --highpass with the time constant of a record's AC-coupled force channel where its "
+                         "generator states one (params tau_ca_s: a user who knows the charge amplifier's setting)")
     a = ap.parse_args(argv)
     cases = [c for c in CASES if not a.cases or c in a.cases.split(",")]
     gens = generators(set(a.only.split(",")) if a.only else None)
@@ -209,7 +216,7 @@ def main(argv=None):
                         print(f"{gname:>12} {case:>17} seed {seed}: generator failed: {type(e).__name__}: {e}",
                               file=sys.stderr, flush=True)
                         continue
-                    r = run_one(truth, a.fn_uncertainty)
+                    r = run_one(truth, a.fn_uncertainty, a.highpass_known)
                     r.update(generator=gname, case=case, seed=seed, nuisance=truth.get("nuisance", nu),
                              args=truth.get("args"), fn_true=truth.get("fn_true"))
                     results.append(r)
