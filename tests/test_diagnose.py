@@ -1183,7 +1183,7 @@ def test_an_ac_coupled_force_is_recovered_and_its_decay_not_read_as_drift(tmp_pa
     p = tmp_path / "ac.csv"
     p.write_text("time [s],friction [N]\n" + "".join(f"{a:.4f},{b:.6f}\n" for a, b in zip(t, y)))
     rec = read_record(p, v0=2.0, stiffness=1000.0, highpass=40.0)
-    assert any("high-pass" in n for n in rec.notes)
+    assert rec.highpass == 40.0 and any("high-pass" in n for n in rec.notes)
     assert float(np.sqrt(np.mean((rec.x - x) ** 2))) < 0.004 * 0.5
     raw = diagnose(read_record(p, v0=2.0, stiffness=1000.0), 10.0)
     assert "friction_drift" in [e["effect"] for e in raw.effects + raw.detected]

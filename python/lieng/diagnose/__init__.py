@@ -588,8 +588,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                      + ("the one that accounts for the other better" if first is not None else
                         "the one whose extension explains more of the training part"))
     effects.sort(key=lambda e: named.index(e["effect"]))
-    if ("friction_drift" in named or any(e["effect"] == "friction_drift" for e in detected)) and \
-            not any("high-pass" in n for n in rec.notes):
+    if ("friction_drift" in named or any(e["effect"] == "friction_drift" for e in detected)) and rec.highpass is None:
         # a sensor that drifts moves the whole record as a drifting friction level does
         force = rec.stiffness is not None or rec.stiffness_unknown
         warnings.append("the friction level drifts in this record; a sensor that drifts moves it alike (a bridge's "

@@ -122,6 +122,8 @@ class Record:
     #: the drive's direction was read from the force's side
     #: (:func:`.segment.drive_from_force`): x already rises with it
     drive_from_force: bool = False
+    #: the time constant (s) of the high-pass undone on x (:func:`undo_highpass`), None when x was read as recorded
+    highpass: float | None = None
 
     @property
     def dt(self) -> float:
@@ -562,6 +564,7 @@ def undo_highpass(rec: Record, tau: float) -> None:
               f"nothing of the stick-slip to recover")
     integ = np.r_[0.0, np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(rec.t))]
     rec.x = y + integ / tau
+    rec.highpass = float(tau)
     span = float(rec.t[-1] - rec.t[0])
     rec.notes.append(f"the friction channel's high-pass (an AC-coupled sensor, time constant {tau:g} s, "
                      f"{span / tau:.3g} of it over the record) undone: x = the recorded x + its integral from the "
