@@ -87,8 +87,6 @@ def subset(c: Cycles, sel) -> Cycles:
                   win=c.win)
 
 
-_subset = subset
-
 
 def split(pr: Prepared, c: Cycles) -> float:
     """The time that ends the training part."""
@@ -600,7 +598,7 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                         out.append(base.copy(trig_eps=e2, trig_ph=ph2 + j * math.pi / 4, **kw))
                     out.append(lvl(base.copy(trig_eps=e2, trig_ph=ph2, **kw)))
     elif effect == "drive_modulation":
-        ts, r = _stick_series(pr, _subset(c, ctr_sel))
+        ts, r = _stick_series(pr, subset(c, ctr_sel))
         per = c.periods(pr.t)
         if r.size >= 5 and per.size >= 2:
             f_ss = 1.0 / float(np.median(per))
@@ -675,29 +673,24 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
 
     vn = [J.scatter() for J, _, _, _ in parts]
 
-    def errors(picks=None, floor=False):
+    def errors(picks=None):
+        """(e_base, e_ext, the gain of the explainable error, the scatter's share of e_base**2)."""
         e0 = e1 = f = 0.0
         for j, (J, vb, ve, _) in enumerate(parts):
             rows = None if picks is None else picks[j]
             e0 += w[j] * J.combine(*vb, rows=rows) ** 2
             e1 += w[j] * J.combine(*ve, rows=rows) ** 2
-            if floor:
-                # the part of the per-cycle squares no model can remove: the record's own scatter, at most
-                # either model's own error variance in each quantity (the squares stay above it)
-                db, de = (v[0] if rows is None else v[0][rows] for v in (vb, ve))
-                with np.errstate(invalid="ignore"):
-                    fl = np.minimum(vn[j], np.minimum(np.nanvar(db, axis=0), np.nanvar(de, axis=0)))
-                f += w[j] * float(np.mean(np.where(np.isfinite(fl), fl, 0.0)))
-        if floor:
-            return max(e0 - f, 0.0), max(e1 - f, 0.0), f, e0
-        return math.sqrt(e0), math.sqrt(e1)
+            # the part of the per-cycle squares no model can remove: the record's own scatter, at most
+            # either model's own error variance in each quantity (the squares stay above it)
+            db, de = (v[0] if rows is None else v[0][rows] for v in (vb, ve))
+            with np.errstate(invalid="ignore"):
+                fl = np.minimum(vn[j], np.minimum(np.nanvar(db, axis=0), np.nanvar(de, axis=0)))
+            f += w[j] * float(np.mean(np.where(np.isfinite(fl), fl, 0.0)))
+        a, b = max(e0 - f, 0.0), max(e1 - f, 0.0)
+        return (math.sqrt(e0), math.sqrt(e1), 1.0 - math.sqrt(b / a) if a > 0 else 0.0,
+                f / e0 if e0 > 0 else 0.0)
 
-    def explained(picks=None):
-        a, b, f, e0 = errors(picks, floor=True)
-        return (1.0 - math.sqrt(b / a) if a > 0 else 0.0), (f / e0 if e0 > 0 else 0.0)
-
-    e0, e1 = errors()
-    gx, share = explained()
+    e0, e1, gx, share = errors()
     try:
         x_base = simulate(pr, base, fn, ylow)[0]
         x_ext = simulate(pr, ext, fn, ylow)[0] if ext is not base else x_base
@@ -709,11 +702,10 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
     gs, gxs = [], []
     if np.all(n >= 3) and any(p[3] for p in parts):
         for _ in range(nboot):
-            picks = [rng.integers(0, int(m), int(m)) for m in n]
-            a, b = errors(picks)
+            a, b, gxb, _ = errors([rng.integers(0, int(m), int(m)) for m in n])
             if a > 0:
                 gs.append(1.0 - b / a)
-                gxs.append(explained(picks)[0])
+                gxs.append(gxb)
     iv = [float(np.percentile(gs, 5)), float(np.percentile(gs, 95))] if len(gs) >= 20 else [g, g]
     ivx = [float(np.percentile(gxs, 5)), float(np.percentile(gxs, 95))] if len(gxs) >= 20 else [gx, gx]
     g = float(np.clip(g, -1e6, 1.0))
