@@ -541,6 +541,14 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     return out
 
 
+def cumulative_trapezoid(v, dt) -> np.ndarray:
+    """The integral of ``v`` from the first sample to each, by the trapezoid
+    rule over the steps ``dt`` (one step, or the n - 1 steps); 0 at the
+    first sample (:func:`.segment.travel` is the drive's)."""
+    v = np.asarray(v, float)
+    return np.r_[0.0, np.cumsum(0.5 * (v[1:] + v[:-1]) * dt)]
+
+
 def _check_highpass(tau) -> None:
     if tau is not None and not (math.isfinite(tau) and tau > 0):
         _fail(f"--highpass {tau:g}: the high-pass time constant must be a positive number of seconds")
@@ -562,8 +570,7 @@ def undo_highpass(rec: Record, tau: float) -> None:
     if tau < 5.0 * rec.dt:
         _fail(f"--highpass {tau:g}: shorter than 5 sampling intervals ({rec.dt:.3g} s): such a high-pass leaves "
               f"nothing of the stick-slip to recover")
-    integ = np.r_[0.0, np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(rec.t))]
-    rec.x = y + integ / tau
+    rec.x = y + cumulative_trapezoid(y, np.diff(rec.t)) / tau
     rec.highpass = float(tau)
     span = float(rec.t[-1] - rec.t[0])
     rec.notes.append(f"the friction channel's high-pass (an AC-coupled sensor, time constant {tau:g} s, "

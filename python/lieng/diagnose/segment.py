@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.read import Record, noise_level
+from lieng.diagnose.read import Record, cumulative_trapezoid, noise_level
 
 __all__ = ["Stroke", "Prepared", "Cycles", "prepare", "find_cycles", "estimate_fn", "smooth"]
 
@@ -808,8 +808,7 @@ def travel(vd, dt):
     """The drive's travel (mm) at each sample from its velocity ``vd``
     (mm/s), by the trapezoid rule over the steps ``dt`` (s: one step, or the
     n - 1 steps); 0 at the first sample."""
-    vd = np.asarray(vd, float)
-    return np.r_[0.0, np.cumsum(0.5 * (vd[1:] + vd[:-1]) * dt)]
+    return cumulative_trapezoid(vd, dt)
 
 
 def reversal_ramp(p: Prepared, s) -> tuple[float, float, float, int | None]:
