@@ -38,6 +38,7 @@ import numpy as np
 from lieng import _core
 from lieng.errors import LiengInputError
 from lieng import status as st
+from lieng.diagnose.signals import resonance
 from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_seconds, stick_part, stick_ratios, travel
 
 __all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "model_y", "calibrate_fn"]
@@ -88,6 +89,8 @@ class Params:
     trig_ay: float = 0.0           # and on the normal channel: ay sin(2 pi f t + phy)
     trig_phy: float = 0.0
     y_c: tuple = (0.0, 0.0, 0.0)   # y = c0 + c1 x + c2 x' (the part of y locked to the motion)
+    rig_f: float = 0.0             # x recorded through a resonance of the rig or its sensor (Hz; 0: none;
+    rig_zeta: float = 0.0          # the replicates' only) and its damping ratio
 
     def copy(self, **kw) -> "Params":
         q = Params(**{f.name: getattr(self, f.name) for f in fields(self)})
@@ -99,6 +102,8 @@ class Params:
         d = {}
         for f in fields(self):
             v = getattr(self, f.name)
+            if f.name.startswith("rig_") and not self.rig_f:
+                continue
             if f.name in ("sg", "fg", "dg"):
                 d[f.name] = [float(a) for a in v] if v is not None else None
             elif f.name == "y_c":
@@ -202,6 +207,8 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
         raise LiengInputError(f"the slider simulation failed ({st.name(status)}): check --fn and the record's units")
     if p.trig_ax:
         x = x + p.trig_ax * _sin(t, p.trig_f, p.trig_phx)
+    if p.rig_f > 0:
+        x = resonance(x, dt, p.rig_f, p.rig_zeta)
     return x, v, state
 
 

@@ -56,8 +56,8 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "fn_needed", "null_replicates", "calibrate", "fn_sensitivity", "decide", "misfit",
-           "RIVALS", "rivals"]
+__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "fn_sensitivity", "decide",
+           "misfit", "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
 ALPHA = 0.05
@@ -175,7 +175,21 @@ def fn_sensitivity(v, e, u: float):
     return m0, s, u * (abs(float(co[1])) + se_b)
 
 
-def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, readings=None) -> tuple:
+def alt_shift(m0: float, s0: float, n: int, alt, one_sided: bool) -> float:
+    """How far an alternative null (its replicates' values ``alt``) lies from
+    the null mean ``m0`` (spread ``s0`` over ``n`` replicates), towards the
+    effect for a one-sided statistic: 0 unless beyond twice the standard
+    error of the difference of their means (:func:`calibrate`)."""
+    alt = np.asarray(alt, float)[np.isfinite(alt)] if alt is not None else np.array([])
+    if alt.size < 5 or n < 5:
+        return 0.0
+    shift = float(np.mean(alt)) - m0
+    if not abs(shift) > 2.0 * math.sqrt(s0 ** 2 / n + float(np.var(alt, ddof=1)) / alt.size):
+        return 0.0
+    return max(shift, 0.0) if one_sided else abs(shift)
+
+
+def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, readings=None, alt=None) -> tuple:
     """A statistic S with standard error se against the finite replicates'
     values v (module docstring): (m0, s0, S - m0, its standard deviation, z,
     p, band).
@@ -193,7 +207,14 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, r
     moves when fn is anywhere within u (towards the null: the favourable
     side for the effect is never credited).  The replicates, a 1-DoF
     slider, need not follow fn as the record does (a second mode of the
-    rig, a bristle lag)."""
+    rig, a bristle lag).
+
+    ``alt``, the statistic on replicates of an alternative null (the
+    baseline without the resonance the record is read as recorded through:
+    a second mode of the rig need not shape the slips as a sensor's
+    resonance does), widens the band by the two nulls' difference where it
+    is significant (beyond twice its standard error), towards the least
+    favourable of them."""
     fit = fn_sensitivity(v, e, u)
     if fit is None:
         m0, s0, band = float(np.mean(v)), float(np.std(v, ddof=1)), 0.0
@@ -201,6 +222,7 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, r
         m0, s0, band = fit
     if readings is not None and all(math.isfinite(r) for r in readings):
         band = max(S - min(readings), 0.0) if one_sided else max(abs(r - S) for r in readings)
+    band += alt_shift(m0, s0, v.size, alt, one_sided)
     den = noise_sd(s0, se, v.size)
     d = S - m0
     excess = (d - band if one_sided else math.copysign(max(abs(d) - band, 0.0), d))
@@ -217,7 +239,7 @@ NOT_APPLICABLE = "does not apply to this record"
 
 
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
-           withheld=None, u_fn: float = 0.0, sizes=None, fn_readings=None) -> dict:
+           withheld=None, u_fn: float = 0.0, sizes=None, fn_readings=None, null_alt=None) -> dict:
     """The evidence table: for every candidate the statistic, the null mean
     and spread, z, p, Holm's decision and whether it is named.
 
@@ -225,7 +247,8 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
     test) for some candidates: their effect size is the statistic itself.
     ``withheld`` maps candidates to the reason their evidence is not read.
     ``fn_readings`` maps candidates to the record's own statistic read at
-    fn (1 -+ u_fn) (:func:`calibrate`).
+    fn (1 -+ u_fn), ``null_alt`` to their values on an alternative null's
+    replicates (:func:`calibrate`).
     ``sizes`` maps candidates to an effect size read on a physical scale
     apart from the statistic the test reads, with its standard error
     (triggering: the load modulation the line implies), and optionally the
@@ -267,9 +290,14 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
             continue
         err = float(se[k]) if math.isfinite(se[k]) else 0.0
         rd = (fn_readings or {}).get(k)
-        m0, s0, d, den, z, p, band = calibrate(S, err, v, k in ONE_SIDED, e, u_fn, rd)
+        alt = (null_alt or {}).get(k)
+        m0, s0, d, den, z, p, band = calibrate(S, err, v, k in ONE_SIDED, e, u_fn, rd, alt)
+        rb = alt_shift(m0, s0, v.size, alt, k in ONE_SIDED)
         rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=err, z=z, p=float(p), effect_size=d, applicable=True,
-                       interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band)
+                       interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band - rb)
+        if alt is not None:
+            rows[k].update(alt_null_mean=float(np.mean(alt[np.isfinite(alt)])) if np.any(np.isfinite(alt)) else None,
+                           alt_band=rb)
         if rd is not None:
             rows[k]["fn_readings"] = [float(r) for r in rd]
         if sizes and k in sizes:
@@ -324,7 +352,7 @@ def fn_needed(row: dict, u_fn: float, n: int) -> float | None:
         return None
     den = noise_sd(row.get("null_sd") or 0.0, row.get("se") or 0.0, n)
     zreq = -_norm_ppf(row.get("holm_level", ALPHA))
-    room = abs(size) - zreq * den
+    room = abs(size) - row.get("alt_band", 0.0) - zreq * den
     if not room > 0:
         return None
     u = u_fn * min(room / band, 1.0)

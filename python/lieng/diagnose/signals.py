@@ -11,7 +11,7 @@ import numpy as np
 
 from lieng.diagnose.segment import Prepared
 
-__all__ = ["lowpass", "spectral_line", "y_on_motion", "directions", "y_locked", "drive_scan", "level_fit",
+__all__ = ["lowpass", "resonance", "spectral_line", "y_on_motion", "directions", "y_locked", "drive_scan", "level_fit",
            "position_anova"]
 
 
@@ -21,6 +21,22 @@ def lowpass(y, dt, fcut):
     Y = np.fft.rfft(y - y.mean())
     Y[f > fcut] = 0
     return np.fft.irfft(Y, y.size) + y.mean()
+
+
+def resonance(x, dt: float, f: float, zeta: float):
+    """``x`` recorded through a second-order resonance at ``f`` Hz of damping
+    ratio ``zeta`` (unit gain at 0 Hz: wn**2 / (s**2 + 2 zeta wn s + wn**2)),
+    discretised exactly for an input linear between samples (first-order
+    hold), started at rest at ``x[0]``."""
+    from scipy import signal
+
+    x = np.asarray(x, float)
+    if x.size < 2 or not (f > 0 and dt > 0):
+        return x.copy()
+    w = 2 * math.pi * f
+    b, a, _ = signal.cont2discrete(([w * w], [1.0, 2.0 * zeta * w, w * w]), dt, method="foh")
+    b = np.ravel(b)
+    return signal.lfilter(b, a, x, zi=signal.lfilter_zi(b, a) * x[0])[0]
 
 
 def _jackknife(values_fn, n_units, groups=10):
