@@ -1196,7 +1196,7 @@ def test_an_ac_coupled_force_is_recovered_and_its_decay_not_read_as_drift(tmp_pa
 
 
 def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, seconds=12.0, seed=0, load_of=None,
-                    load_x=0.0, mode=None):
+                    load_x=0.0, mode=None, rig=None):
     """A Coulomb slider whose load is modulated, N (1 + eps sin(2 pi f t)), f = r fn (the
     static and the kinetic force both), stepped by semi-implicit Euler at 40 kHz (plain NumPy,
     no lieng code), sampled at 2 kHz; ``sensor``: a line at f added to the recorded x (a
@@ -1205,11 +1205,13 @@ def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, sec
     the friction drives a normal mode at f (a lever's, damping ratio zeta) that adds q to
     the load, q'' + 2 zeta w q' + w**2 q = w**2 gamma (F - fk), F the friction force (the
     spring's in stick, fk N in slip).  With ``load_x`` or ``mode`` the load at the samples
-    is returned too."""
+    is returned too.  ``rig`` (f_s, zeta): x recorded through a sensor with its own resonance
+    at f_s Hz, y'' = ws**2 (x - y) - 2 zeta ws y', integrated alongside at the same step."""
     g = np.random.default_rng(seed)
     wn, w, h = 2 * math.pi * fn, 2 * math.pi * r * fn, 1.0 / 40000
     n = int(seconds / h)
     x, xd, stick, q, qd = 0.3, v0, True, 0.0, 0.0
+    y, yd, ws = x, 0.0, 2 * math.pi * rig[0] if rig else 0.0
     out, loads = np.empty(n // 20), np.empty(n // 20)
     for i in range(n):
         t = i * h
@@ -1229,8 +1231,11 @@ def _forced_coulomb(eps, sensor=0.0, fn=10.0, r=3.7, v0=2.0, fs=1.0, fk=0.6, sec
             x += h * xd
             if xd >= v0:
                 stick, xd = True, v0
+        if rig:
+            yd += h * (ws * ws * (x - y) - 2 * rig[1] * ws * yd)
+            y += h * yd
         if i % 20 == 0:
-            out[i // 20], loads[i // 20] = x, load
+            out[i // 20], loads[i // 20] = (y if rig else x), load
     tt = np.arange(out.size) * 20 * h
     xs = out + sensor * np.sin(w * tt) + 0.002 * g.standard_normal(out.size)
     return (tt, xs, r * fn) if not load_x and mode is None else (tt, xs, r * fn, loads)
@@ -2393,36 +2398,6 @@ def test_the_resonance_a_record_is_taken_through_is_the_second_order_ramp_respon
     assert np.max(np.abs(y - exact)) < 1e-9
 
 
-def _coulomb_through_sensor(f_s, zeta=0.05, fn=10.0, v0=2.0, fs=1.0, fk=0.6, seconds=12.0, seed=0):
-    """A Coulomb slider (plain NumPy, semi-implicit Euler at 40 kHz, sampled at
-    2 kHz) recorded through a sensor with its own resonance at ``f_s`` Hz
-    (damping ratio ``zeta``, integrated alongside at the same step; 0: none),
-    white noise of 0.4 % of the drop: (t, x)."""
-    g = np.random.default_rng(seed)
-    wn, ws, h = 2 * math.pi * fn, 2 * math.pi * f_s, 1.0 / 40000
-    n = int(seconds / h)
-    x, xd, stick, y, yd = 0.3, v0, True, 0.3, 0.0
-    out = np.empty(n // 20)
-    for i in range(n):
-        if stick:
-            x += v0 * h
-            if x >= fs:
-                stick = False
-        else:
-            xd += h * wn * wn * (fk - x)
-            x += h * xd
-            if xd >= v0:
-                stick, xd = True, v0
-        if f_s:
-            yd += h * (ws * ws * (x - y) - 2 * zeta * ws * yd)
-            y += h * yd
-        else:
-            y = x
-        if i % 20 == 0:
-            out[i // 20] = y
-    return np.arange(out.size) * 20 * h, out + 0.002 * g.standard_normal(out.size)
-
-
 def test_a_sensor_that_rings_after_each_arrest_is_modelled_not_read_as_a_twin_branch():
     """A Coulomb slider recorded through a sensor whose own resonance is at
     4 fn (damping ratio 0.05): each arrest and each onset ring it, and x''
@@ -2436,7 +2411,7 @@ def test_a_sensor_that_rings_after_each_arrest_is_modelled_not_read_as_a_twin_br
     from lieng.diagnose.goodness import rig_mode
     from lieng.diagnose.segment import find_cycles, prepare
 
-    t, x = _coulomb_through_sensor(40.0)
+    t, x, _ = _forced_coulomb(0.0, rig=(40.0, 0.05))
     rec = record_from_arrays(t, x, 2.0)
     pr = prepare(rec)
     m = rig_mode(pr, find_cycles(pr, 10.0), 10.0)
@@ -2444,6 +2419,6 @@ def test_a_sensor_that_rings_after_each_arrest_is_modelled_not_read_as_a_twin_br
     d = diagnose(rec, 10.0)
     assert d.effect == "none", (d.effect, d.gain)
     assert any("rings after each arrest at 40" in n for n in d.notes)
-    t, x = _coulomb_through_sensor(0.0)
+    t, x, _ = _forced_coulomb(0.0)
     pr = prepare(record_from_arrays(t, x, 2.0))
     assert rig_mode(pr, find_cycles(pr, 10.0), 10.0) is None
