@@ -725,6 +725,33 @@ def test_a_tribometers_deflection_and_sliding_distance_columns_are_read(tmp_path
     assert abs(float(np.ptp(rec.x)) - 0.099) < 1e-4                # um read as mm (the samples reach 99 um)
 
 
+def test_a_brake_rigs_torque_arm_and_clamp_force_columns_are_read(tmp_path):
+    """A brake or pin-on-disc rig names its friction channel by where it is
+    measured ("torque_arm_force [N]", "F_arm/mN") and its normal one by what
+    presses ("clamp_force [N]", "Fnorm/mN": a force unit makes Fnorm the
+    normal force, while Colas's unitless Fnorm, F over the weight, stays a
+    coefficient); the drive's "disc_track [mm]" is its travel (all four had
+    been refused: "no displacement ... column", "Fnorm: unit 'N': a friction
+    coefficient has none", by `bouc_wen_brake`'s records)."""
+    from lieng.diagnose import read_record
+    from lieng.diagnose.read import _role
+
+    assert _role("torque_arm_force", "N") == "F"
+    assert _role("clamp_force", "N") == "N"
+    assert _role("F_arm", "mN") == "F"
+    assert _role("Fnorm", "mN") == "N" and _role("Fnorm", "") == "mu"
+    assert _role("disc_track", "mm") == "position"
+    t = np.arange(0.0, 20.0, 0.005)
+    saw = (t * 2.0) % 1.0
+    p = tmp_path / "brake.csv"
+    _write(p, {"t [s]": t, "torque_arm_force [N]": 1.0 + 0.2 * saw, "clamp_force [N]": np.full_like(t, 4.0),
+               "disc_track [mm]": 0.5 * t})
+    rec = read_record(p, stiffness=1000.0)
+    assert rec.drive_recorded and abs(float(np.median(rec.vd)) - 0.5) < 1e-3
+    assert rec.y_is_force and abs(float(np.median(rec.y)) - 4.0) < 1e-9
+    assert abs(float(np.ptp(rec.x)) - 0.198) < 1e-9                # (1.0 + 0.2 saw) N / 1000 N/m: mm, saw <= 0.99
+
+
 def test_a_friction_coefficient_column_is_the_force_over_the_load(tmp_path):
     """Tribometers often record the friction coefficient: "COF" with a
     normal force column is the force mu N (x = mu N / k); "mu" alone is a

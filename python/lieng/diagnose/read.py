@@ -56,8 +56,8 @@ _NAMES = {
           "lateral_force", "kraft", "reibkraft", "reibungskraft", "tangentialkraft", "tau", "stress", "shear_stress",
           "tau_s"),
     "mu": ("mu", "µ", "μ", "cof", "coefficient_of_friction", "friction_coefficient", "fnorm", "mu_k"),
-    "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "normal_load", "normalkraft", "sigma",
-          "sigma_n", "normal_stress"),
+    "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "f_n", "f_z", "normal_load", "normalkraft",
+          "sigma", "sigma_n", "normal_stress", "fnorm", "f_norm"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg", "distance",
                  "sliding_distance", "travel"),
 }
@@ -156,10 +156,12 @@ def _check_v0(v0) -> None:
 
 
 #: words that give a column its role when its name is none of _NAMES
-#: ("Tangential force", "Normal load", "Stage position"), first match wins
-_WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load", "normale")),
-          ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement")),
-          ("position", ("position", "stage", "distance", "travel")), ("v0", ("velocity", "speed", "vitesse")),
+#: ("Tangential force", "Normal load", "Stage position", "Clamp force", "Torque arm force", "F_arm"), first
+#: match wins (a normal word before a force's: "clamp_force" is the normal force)
+_WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load", "normale", "clamp", "clamping")),
+          ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement", "torque",
+                 "drag", "f", "force")),
+          ("position", ("position", "stage", "distance", "travel", "track")), ("v0", ("velocity", "speed", "vitesse")),
           ("t", ("time", "temps")), ("x", ("displacement", "extension", "deplacement", "deflection")))
 
 
