@@ -567,9 +567,10 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         r = rows[k]
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])
         if r.get("alt_band", 0.0) > 0 and size >= MARGIN[k] and not r["significant"]:
-            warnings.append(f"{k} reads {r['effect_size']:+.3g} (over the drop) against the baseline recorded through "
-                            f"the resonance at {rig[0]:.4g} Hz, but {r['statistic'] - r['alt_null_mean']:+.3g} against it without the "
-                            f"resonance (a second mode of the rig shapes the slips otherwise than a sensor): not named")
+            warnings.append(f"{k}: its statistic departs by {r['statistic'] - r['null_mean']:+.3g} from the baseline's "
+                            f"replicates recorded through the resonance at {rig[0]:.4g} Hz, by "
+                            f"{r['statistic'] - r['alt_null_mean']:+.3g} from those without it (a second mode of the rig "
+                            f"shapes the slips otherwise than a sensor does): not named")
     dpl, fd_row = aux.get("drift_per_load"), rows["friction_drift"]
     if dpl is not None and rows["load_variation"]["named"] and fd_row["named"] and \
             not (dpl[1] is not None and dpl[1] <= fd_row["holm_level"] and dpl[0] >= MARGIN["friction_drift"]):
