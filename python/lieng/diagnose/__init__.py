@@ -17,7 +17,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.special import stdtr
 
 from lieng.errors import LiengInputError
 from lieng.io.outputs import finite_json as _finite
@@ -27,7 +26,7 @@ from lieng.diagnose.decide import (ALPHA, REPLICATE_BUDGET, RIVALS, decide, fn_n
                                    rivals)
 from lieng.diagnose.evidence import (CANDIDATES, MARGIN, ONE_SIDED, SLIDING, fn_readings, sliding_statistics,
                                      statistics)
-from lieng.diagnose.goodness import RIG, onset_ringing, rig_mode
+from lieng.diagnose.goodness import RIG, mean_above_zero, onset_ringing, rig_mode
 from lieng.diagnose.signals import lowpass, y_on_motion
 from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed, window
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
@@ -289,9 +288,7 @@ def _rig(pr: Prepared, c, fn: float, base: Params, notes: list, warnings: list):
         mod_on = onset_ringing(xs, cs, pr.dt, f, z, w) if rec_on.shape[0] else np.zeros((0, 2))
         m = mod_on.mean(axis=0) if mod_on.shape[0] >= 3 else np.zeros(2)
         if rec_on.shape[0] >= 5 and np.hypot(*m) > 0:
-            proj = rec_on @ (m / np.hypot(*m))
-            sd = float(np.std(proj, ddof=1))
-            p = float(stdtr(proj.size - 1, -proj.mean() / (sd / math.sqrt(proj.size)))) if sd > 0 else 1.0
+            p = mean_above_zero(rec_on @ (m / np.hypot(*m)))
             if p > RIG_PHASE_ALPHA:
                 why = (f"the slips' onsets do not ring in the phase a sensor's resonance gives them (p = {p:.2g}): a "
                        f"second mode of the rig, not modelled")
@@ -567,10 +564,10 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         r = rows[k]
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])
         if r.get("alt_band", 0.0) > 0 and size >= MARGIN[k] and not r["significant"]:
-            warnings.append(f"{k}: its statistic departs by {r['statistic'] - r['null_mean']:+.3g} from the baseline's "
-                            f"replicates recorded through the resonance at {rig[0]:.4g} Hz, by "
-                            f"{r['statistic'] - r['alt_null_mean']:+.3g} from those without it (a second mode of the rig "
-                            f"shapes the slips otherwise than a sensor does): not named")
+            warnings.append(f"{k}: its statistic departs by {r['statistic'] - r['null_mean']:+.3g} from the "
+                            f"baseline's replicates recorded through the resonance at {rig[0]:.4g} Hz, by "
+                            f"{r['statistic'] - r['alt_null_mean']:+.3g} from those without it (a second mode of the "
+                            f"rig shapes the slips otherwise than a sensor does): not named")
     dpl, fd_row = aux.get("drift_per_load"), rows["friction_drift"]
     if dpl is not None and rows["load_variation"]["named"] and fd_row["named"] and \
             not (dpl[1] is not None and dpl[1] <= fd_row["holm_level"] and dpl[0] >= MARGIN["friction_drift"]):

@@ -10,7 +10,7 @@ import numpy as np
 
 from lieng.diagnose.segment import Cycles, Prepared, slip_seconds
 
-__all__ = ["GOF", "GOF_MARGIN", "RIG", "arrest_ringing", "goodness", "onset_ringing", "rig_mode"]
+__all__ = ["GOF", "GOF_MARGIN", "RIG", "arrest_ringing", "goodness", "mean_above_zero", "onset_ringing", "rig_mode"]
 
 
 #: goodness-of-fit features of the baseline (not effects): the slip's duration
@@ -95,16 +95,27 @@ def arrest_waves(x, c: Cycles, fn: float, dt: float, w: int | None = None):
     return (np.asarray(rows), w) if len(rows) >= 6 else None
 
 
-def _damped(w: int, dt: float, f: float, zeta: float) -> np.ndarray:
+def _damped(w: int, dt: float, f: float, zeta: float, q=None) -> np.ndarray:
     """The two columns of a damped oscillation at ``f`` (Hz; its undamped
-    frequency) of damping ratio ``zeta`` on ``w`` samples, less their quadratics."""
+    frequency) of damping ratio ``zeta`` on ``w`` samples, less their
+    projection on the orthonormal columns ``q`` (by default the quadratics)."""
     tau = np.arange(w) * dt
     om = 2 * math.pi * f
     wd = om * math.sqrt(max(1.0 - zeta * zeta, 1e-6))
     e = np.exp(-zeta * om * tau)
     m = np.column_stack([e * np.cos(wd * tau), e * np.sin(wd * tau)])
-    q = _quadratic_basis(w)
+    q = _quadratic_basis(w) if q is None else q
     return m - q @ (q.T @ m)
+
+
+def mean_above_zero(v) -> float:
+    """The one-sided p-value of Student's t that the mean of ``v`` is above 0
+    (1 when its spread is 0)."""
+    from scipy.special import stdtr
+
+    v = np.asarray(v, float)
+    sd = float(np.std(v, ddof=1)) if v.size > 1 else 0.0
+    return float(stdtr(v.size - 1, -float(np.mean(v)) / (sd / math.sqrt(v.size)))) if sd > 0 else 1.0
 
 
 def _fit_mode(mean, dt: float, fn: float):
@@ -143,8 +154,6 @@ def rig_mode(pr: Prepared, c: Cycles, fn: float) -> dict | None:
     RIG_ALPHA; a resonance (damping ratio at most RIG_ZETA, frequency off
     the grid's ends) that dies away (to half at least within the window).
     Returns {f, zeta, p, w, wave (the mean waveform)} or None."""
-    from scipy.special import stdtr
-
     aw = arrest_waves(pr.x, c, fn, pr.dt)
     if aw is None:
         return None
@@ -157,9 +166,7 @@ def rig_mode(pr: Prepared, c: Cycles, fn: float) -> dict | None:
         nrm = float(np.linalg.norm(m[2]))
         if not nrm > 0:
             return None
-        proj = test_on @ (m[2] / nrm)
-        sd = float(np.std(proj, ddof=1))
-        ps.append(float(stdtr(proj.size - 1, -proj.mean() / (sd / math.sqrt(proj.size)))) if sd > 0 else 1.0)
+        ps.append(mean_above_zero(test_on @ (m[2] / nrm)))
     if max(ps) > RIG_ALPHA:
         return None
     wave = W.mean(axis=0)
@@ -179,12 +186,7 @@ def onset_ringing(x, c: Cycles, dt: float, f: float, zeta: float, w: int) -> np.
     oscillation's two columns: (slips, 2)."""
     tt = np.linspace(-1.0, 1.0, w)
     q, _ = np.linalg.qr(np.column_stack([np.ones(w), tt, tt * tt, tt ** 3]))
-    tau = np.arange(w) * dt
-    om = 2 * math.pi * f
-    e = np.exp(-zeta * om * tau)
-    wd = om * math.sqrt(max(1.0 - zeta * zeta, 1e-6))
-    b = np.column_stack([e * np.cos(wd * tau), e * np.sin(wd * tau)])
-    b = b - q @ (q.T @ b)
+    b = _damped(w, dt, f, zeta, q)
     rows = []
     for k in range(c.n):
         p0 = int(c.peak_i[k])
