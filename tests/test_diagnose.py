@@ -2449,3 +2449,31 @@ def test_a_sensor_that_rings_after_each_arrest_is_modelled_not_read_as_a_twin_br
     t, x, _ = _forced_coulomb(0.0)
     pr = prepare(record_from_arrays(t, x, 2.0))
     assert rig_mode(pr, find_cycles(pr, 10.0), 10.0) is None
+
+
+def test_a_sliders_position_named_x_is_read_as_the_drives_travel_less_it(tmp_path):
+    """A laser on the slider written as ``x`` (the slider's position, which
+    moves one way by the drive's travel less the spring's extension) is not
+    the spring's extension the diagnosis reads: read as it was (before this
+    check), the Coulomb slider of :func:`_ac_coupled_sawtooth` gave
+    'no_stick_slip' with a friction level of -11 mm.  Now the extension is
+    the drive's travel less it, equal to the true extension less its first
+    sample to the rounding of the file, and said in a note; the spring's
+    extension written as ``x`` is read as it is."""
+    from lieng.diagnose import read_record
+
+    v0 = 2.0
+    t, _, ext = _ac_coupled_sawtooth(1e9, v0=v0)
+    slider = v0 * t - ext + 3.0                       # the slider's position (mm), from an arbitrary origin
+    p = tmp_path / "slider.csv"
+    p.write_text("t [s],x [mm]\n" + "".join(f"{a:.4f},{b:.7f}\n" for a, b in zip(t, slider)))
+    rec = read_record(p, v0=v0)
+    assert any("slider's position" in n for n in rec.notes)
+    assert float(np.max(np.abs(rec.x - (ext - ext[0])))) < 1e-5
+    d = diagnose(rec, 10.0)
+    assert d.effect == "none" and d.n_cycles >= 25
+    q = tmp_path / "extension.csv"
+    q.write_text("t [s],x [mm]\n" + "".join(f"{a:.4f},{b:.7f}\n" for a, b in zip(t, ext)))
+    rec = read_record(q, v0=v0)
+    assert not any("slider's position" in n for n in rec.notes)
+    assert float(np.max(np.abs(rec.x - ext))) < 1e-6

@@ -183,6 +183,8 @@ def _role(name: str, unit: str = ""):
     words = set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", key).encode("ascii", "ignore").decode()))
     if "load" in words and words & {"friction", "tangential", "lateral", "shear", "traction"}:
         words = words - {"load"}             # "Tangential load", "Friction load": the friction force
+    if {"load", "cell"} <= words:
+        words = (words - {"load"}) | {"force"}    # a load cell is a force transducer: which force, the other words say
     if {"load", "point"} <= words or "lp" in words:
         words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
     named = [role for role, alts in _NAMES.items() if key in alts] + \
@@ -532,6 +534,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         vd, recorded = np.full_like(t, float(v0)), False
     if not np.any(np.abs(vd) > 0):
         _fail(f"{path}: the drive never moves (all zero): no stick-slip")
+    if "x" in cols and "F" not in cols and pair is None:
+        x = _extension_of_slider(x, vd, dt, pos, cols["x"][0], notes)
     out = Record(t=t, x=x, vd=vd, y=y, y_is_force=y_force, drive_recorded=recorded, source=str(path), notes=notes,
                  stiffness_unknown="F" in cols and "x" not in cols and stiffness is None,
                  stiffness=stiffness if "F" in cols and "x" not in cols else None,
@@ -608,6 +612,32 @@ def _at_limit(v) -> str | None:
             return (f"sits at its {'largest' if sign > 0 else 'smallest'} value, {end:.6g}, on {k} samples in {runs} "
                     f"stretches")
     return None
+
+
+#: a displacement column that moves one way by this fraction of the drive's travel (either way) is the slider's
+#: position: its net travel is the drive's less the change of the spring's extension, a few drops at most
+SLIDER_TRAVEL = (0.7, 1.3)
+
+
+def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> np.ndarray:
+    """The spring's extension from a displacement column that is the
+    slider's position (a laser or encoder on the slider, named x): it moves
+    one way only (:func:`_one_way`) and about as far as the drive
+    (:data:`SLIDER_TRAVEL`), where an extension rises and falls every
+    cycle; the extension is the drive's travel less it, said in ``notes``.
+    Any other column is returned as it is."""
+    drive = pos - pos[0] if pos is not None else cumulative_trapezoid(vd, dt)
+    net_d = float(drive[-1])
+    if not (_one_way(x) and abs(net_d) > 0):
+        return x
+    r = float(x[-1] - x[0]) / net_d
+    if not SLIDER_TRAVEL[0] <= r <= SLIDER_TRAVEL[1]:
+        return x
+    notes.append(f"column {name} moves one way only, {r:.2f} of the drive's travel: the slider's position, not the "
+                 f"spring's extension (which rises and falls every cycle); the extension is read as the drive's "
+                 f"travel less it, from 0 at the first sample (the friction level is then relative to that "
+                 f"sample's)")
+    return drive - (x - x[0])
 
 
 def _one_way(x) -> bool:
