@@ -58,7 +58,32 @@ VARIANTS = {
         lambda a, b: f"{'23:59:59.9' if a < 0.1 else '00:00:00.0'}{int(round(1000 * a)) % 100:02d},{b}\n"),
     "a drive position logged on every tenth row": "t [s],F [N],position [mm]\n" + "".join(
         f"{T[i]},{F[i]}," + (f"{T[i]:.4f}" if i % 10 == 0 else "") + "\n" for i in range(200)),
+    "a load cell is a force transducer": "Time [s],Load Cell [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
 }
+
+
+def _lvm(multi=False, dec="."):
+    """A LabVIEW measurement file (.lvm, writer version 2) as LabVIEW's
+    Write To Measurement File writes it: a file header and a channel header,
+    each ended by ***End_of_Header***, the channels' units in Y_Unit_Label,
+    one X_Value column (or one per channel with X_Columns Multi), a trailing
+    empty Comment column."""
+    n = 2 if multi else 1
+    head = ("LabVIEW Measurement\t\nWriter_Version\t2\nReader_Version\t2\nSeparator\tTab\n"
+            f"Decimal_Separator\t{dec}\nMulti_Headings\tNo\nX_Columns\t{'Multi' if multi else 'One'}\n"
+            "Time_Pref\tRelative\nOperator\tlab\nDate\t2026/11/27\nTime\t10:00:00.000\n***End_of_Header***\t\n\t\n"
+            f"Channels\t{n}\t\nSamples\t200\t{'200' if multi else ''}\t\nY_Unit_Label\tN\t{'mm' if multi else ''}\t\n"
+            "X_Dimension\tTime\tTime\t\nX0\t0.0000000000000000E+0\t0.0000000000000000E+0\t\n"
+            "Delta_X\t0.001000\t0.001000\t\n***End_of_Header***\t\t\t\n")
+    if multi:
+        return head + "X_Value\tFriction\tX_Value\tStage\tComment\n" + _rows(
+            lambda a, b: f"{a:.6f}\t{b}\t{a:.6f}\t{a:.6f}\n".replace(".", dec))
+    return head + "X_Value\tFriction\tComment\n" + _rows(lambda a, b: f"{a:.6f}\t{b}\n".replace(".", dec))
+
+
+VARIANTS.update({"a LabVIEW measurement file (.lvm)": _lvm(),
+                 "a LabVIEW measurement file, an X column per channel": _lvm(multi=True),
+                 "a LabVIEW measurement file with a decimal comma": _lvm(dec=",")})
 
 
 def _read(tmp_path, name, text):

@@ -248,6 +248,49 @@ def _data_cells(row: str) -> tuple:
 PREAMBLE_SCAN = 200
 
 
+#: the line that ends each header block of a LabVIEW measurement file (.lvm)
+LVM_END = "***End_of_Header***"
+
+
+def _lvm_header(rows):
+    """A LabVIEW measurement file's (.lvm) headers: (the row index of the
+    last ``***End_of_Header***`` line, its channel header's fields: key ->
+    the cells after it) or None when ``rows`` are not such a file.  The
+    column header row follows that line; ``Y_Unit_Label`` gives the
+    channels' units, ``X_Dimension`` what the X_Value column is."""
+    ends = [k for k, r in enumerate(rows[:PREAMBLE_SCAN * 4]) if r.strip().strip("\t").strip() == LVM_END]
+    if not ends or not rows[0].strip().lower().startswith("labview measurement"):
+        return None
+    fields = {}
+    lo = ends[-2] + 1 if len(ends) > 1 else 0
+    for r in rows[lo:ends[-1]]:
+        cells = [c.strip() for c in r.split("\t")]
+        if cells and cells[0]:
+            fields[cells[0]] = [c for c in cells[1:] if c]
+    return ends[-1], fields
+
+
+def _lvm_names(names, units, fields):
+    """The column names and units of a LabVIEW measurement file: each
+    ``X_Value`` column is the time (s) when its ``X_Dimension`` is Time
+    (the second and later ones, one per channel with ``X_Columns Multi``,
+    marked as X_Value again and not read), the channels' units from
+    ``Y_Unit_Label`` where the header gives none."""
+    xdim = fields.get("X_Dimension", [])
+    yunits = list(fields.get("Y_Unit_Label", []))
+    out_n, out_u, seen_x = [], [], False
+    for n, u in zip(names, units):
+        if n == "X_Value":
+            if not seen_x and (not xdim or xdim[0].lower() == "time"):
+                n, u = "time", u or "s"
+            seen_x = True
+        elif n != "Comment" and yunits:
+            u = u or yunits.pop(0)
+        out_n.append(n)
+        out_u.append(u)
+    return out_n, out_u
+
+
 def _header_after_preamble(rows, content) -> int:
     """The index into ``content`` of the header row: the last text row
     before the first two rows of as many numbers (the row above a row
@@ -350,7 +393,9 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
                 break
     if not content:
         raise LiengInputError(f"{path}: empty file: expected a header {expect}")
-    skipped = _header_after_preamble(rows, content)
+    lvm = _lvm_header(rows)
+    skipped = _header_after_preamble(rows, content) if lvm is None else \
+        next((i for i, k in enumerate(content) if k > lvm[0]), 0)
     k0 = content[skipped]
     k1 = next((k for k in range(k0 + 1, len(rows)) if rows[k].strip() and not _is_comment(rows[k])), None)
     first = None if k1 is None else rows[k1]
@@ -375,6 +420,8 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         nm, un = _name_unit(h)
         names.append(nm)
         units.append(un)
+    if lvm is not None:
+        names, units = _lvm_names(names, units, lvm[1])
     ncol = len(names)
     comma = sep != ","
     start = k0 + 1
