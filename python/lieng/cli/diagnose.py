@@ -74,13 +74,13 @@ def _diagnose(args) -> int:
 
 
 #: the records ``diagnose --batch DIR`` reads: the files of DIR with these suffixes
-BATCH_SUFFIXES = (".csv", ".txt", ".dat", ".xlsx", ".xlsm", ".mat", ".npz")
+BATCH_SUFFIXES = (".csv", ".txt", ".dat", ".lvm", ".xlsx", ".xlsm", ".mat", ".npz")
 #: the columns of ``diagnose --batch``'s batch.csv
 BATCH_COLUMNS = ("record", "outdir", "status", "effect", "effects_named", "gain", "cycles", "error")
 
 
 def _batch_records(folder) -> list:
-    """The records of ``--batch DIR``: its entries named *.csv, *.txt, *.dat,
+    """The records of ``--batch DIR``: its entries named *.csv, *.txt, *.dat, *.lvm,
     *.xlsx, *.xlsm, *.mat, *.npz (not hidden, not directories), sorted; refused when there are none or two
     would write the same OUTDIR/<stem>/."""
     p = Path(folder)
@@ -95,7 +95,7 @@ def _batch_records(folder) -> list:
     recs = [p / e for e in entries if not e.startswith(".") and Path(e).suffix.lower() in BATCH_SUFFIXES
             and not (p / e).is_dir()]
     if not recs:
-        raise LiengInputError(f"--batch {folder}: no record in it (files named *.csv, *.txt, *.dat, *.xlsx, *.mat or *.npz)")
+        raise LiengInputError(f"--batch {folder}: no record in it (files named *.csv, *.txt, *.dat, *.lvm, *.xlsx, *.mat or *.npz)")
     seen = {}
     for r in recs:
         if r.stem in seen:

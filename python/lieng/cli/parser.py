@@ -141,8 +141,8 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("data", nargs="?", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
                     "the header (F may be a friction coefficient mu or COF: times N when recorded; 'F [mN]', "
                     "'time/s', 'Time (s)', or a row of units; comma, semicolon, TAB or whitespace, a decimal comma, "
-                    "'#' comments; rows with a missing value left out), a spreadsheet .xlsx (its first sheet, read as "
-                    "such a table), a MATLAB .mat (v4-v7) or NumPy .npz file of vectors named so, or a TRC deck")
+                    "'#' comments; rows with a missing value left out), a LabVIEW .lvm file, a spreadsheet .xlsx (its first "
+                    "sheet, read as such a table), a MATLAB .mat (v4-v7) or NumPy .npz file of vectors named so, or a TRC deck")
     dg.add_argument("--v0", type=float, metavar="MM_S",
                     help="drive velocity (mm/s) when the record has no v0/position column")
     dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "
@@ -158,7 +158,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "(a piezoelectric force cell's charge amplifier): the time constant (s) of its high-pass, "
                     "undone before the diagnosis (a steady force otherwise sinks towards zero, read as a drifting "
                     "friction)")
-    dg.add_argument("--batch", metavar="DIR", help="diagnose every record in DIR (*.csv, *.txt, *.dat, *.xlsx, *.mat, *.npz; the options "
+    dg.add_argument("--batch", metavar="DIR", help="diagnose every record in DIR (*.csv, *.txt, *.dat, *.lvm, *.xlsx, *.mat, *.npz; the options "
                     "above apply to each) into OUTDIR/<record>/, with a summary in OUTDIR/batch.csv; status 1 when "
                     "a record failed (the others are still written)")
     _executor_options(dg, "with --batch: ")
