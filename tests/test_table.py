@@ -34,6 +34,7 @@ VARIANTS = {
     "a separator at the end of each line": "t [s],F [N],\n" + _rows(lambda a, b: f"{a},{b},\n"),
     "Fx (tribometer axes)": "Time [s],Fx [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
     "time in ms": "t [ms],F [mN]\n" + _rows(lambda a, b: f"{1000 * a:.3f},{1000 * b:.4f}\n"),
+    "a nanotribometer's nN": "t [s],F [nN]\n" + _rows(lambda a, b: f"{a},{1e9 * b:.1f}\n"),
     "a Greek mu for micro (U+03BC)": "t [s],F [\u03bcN]\n" + _rows(lambda a, b: f"{a},{1e6 * b:.1f}\n"),
     "an instrument's metadata above the header": "Instrument: UMT-2\nOperator: A. B.\nSample rate,1000\n\n"
                                                  "t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
@@ -58,6 +59,8 @@ VARIANTS = {
         lambda a, b: f"{'23:59:59.9' if a < 0.1 else '00:00:00.0'}{int(round(1000 * a)) % 100:02d},{b}\n"),
     "a drive position logged on every tenth row": "t [s],F [N],position [mm]\n" + "".join(
         f"{T[i]},{F[i]}," + (f"{T[i]:.4f}" if i % 10 == 0 else "") + "\n" for i in range(200)),
+    "a testing machine's pull test (its one force 'Load', the crosshead's 'Extension')":
+        '"Time (s)","Extension (mm)","Load (N)"\n' + _rows(lambda a, b: f'"{a}","{a:.4f}","{b}"\n'),
     "a load cell is a force transducer": "Time [s],Load Cell [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
 }
 

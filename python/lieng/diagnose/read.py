@@ -67,11 +67,12 @@ EXCEL_DAY_NAMES = ("date", "datetime", "date_time", "date/time", "timestamp", "t
 _LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6,
            "in": 25.4, "inch": 25.4, "mil": 0.0254}
 _VELOCITY = {"": 1.0, "mm/s": 1.0, "um/s": 1e-3, "µm/s": 1e-3, "m/s": 1e3, "cm/s": 10.0, "mm/min": 1 / 60,
-             "mm/sec": 1.0, "um/sec": 1e-3, "µm/sec": 1e-3, "m/min": 1e3 / 60, "in/s": 25.4, "in/min": 25.4 / 60}
+             "mm/sec": 1.0, "um/sec": 1e-3, "µm/sec": 1e-3, "m/min": 1e3 / 60, "in/s": 25.4, "in/min": 25.4 / 60, "nm/s": 1e-6,
+             "um/min": 1e-3 / 60, "µm/min": 1e-3 / 60}
 _TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "msec": 1e-3, "us": 1e-6, "µs": 1e-6, "usec": 1e-6,
          "min": 60.0, "h": 3600.0, "hr": 3600.0}
 #: forces (N), also the gravitational units a balance or an old rig writes (gram-, kilogram-, pound-force)
-_FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "kn": 1e3, "dan": 10.0, "gf": 9.80665e-3,
+_FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "nn": 1e-9, "kn": 1e3, "dan": 10.0, "gf": 9.80665e-3,
           "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605}
 #: stresses (Pa): a shear and a normal stress stand for the forces (a rock-mechanics biaxial rig)
 _STRESS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "bar": 1e5, "psi": 6894.757}
@@ -137,7 +138,7 @@ def _unit_key(unit: str) -> str:
 
 
 #: units as they are written, for the messages
-_SHOWN = {"n": "N", "mn": "mN", "un": "uN", "µn": "µN", "kn": "kN", "dan": "daN", "kgf": "kgf", "kp": "kp", "lbf": "lbf", "gf": "gf", "pa": "Pa", "kpa": "kPa", "mpa": "MPa",
+_SHOWN = {"n": "N", "mn": "mN", "un": "uN", "µn": "µN", "nn": "nN", "kn": "kN", "dan": "daN", "kgf": "kgf", "kp": "kp", "lbf": "lbf", "gf": "gf", "pa": "Pa", "kpa": "kPa", "mpa": "MPa",
           "gpa": "GPa"}
 
 
@@ -384,6 +385,15 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                   f"the {role} channel?)")
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
+    pull_note = None
+    if "N" in cols and not {"F", "mu"} & cols.keys() and cols["N"][0].strip().lower() == "load" and \
+            ("x" not in cols or _one_way(cols["x"][1])):
+        # a universal testing machine's friction test (ASTM D1894, ISO 8295: a sled pulled over a plane by the
+        # crosshead): its one force, 'Load', is the pull that drags the slider, and its 'Extension' the
+        # crosshead's travel (read as the drive's below)
+        cols["F"], units["F"] = cols.pop("N"), units.pop("N")
+        pull_note = (f"column {cols['F'][0]} is the record's only force and nothing presses in it (a testing "
+                     f"machine's pull test): read as the friction force that drags the slider")
     # a slider's position beside the stage's (a laser on the slider, an encoder on the stage) and no force or
     # extension: the spring's extension is their difference
     pair = _slider_and_stage(roles) if "x" not in cols and "F" not in cols else None
@@ -469,7 +479,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (notes_pair, mu_note, drive_note, serial_note, runs_note, stamps_note) if m]
+    notes = [m for m in (pull_note, notes_pair, mu_note, drive_note, serial_note, runs_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
