@@ -162,8 +162,9 @@ def _check_v0(v0) -> None:
 _WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load", "normale", "clamp", "clamping")),
           ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement", "torque",
                  "drag", "f", "force")),
-          ("position", ("position", "stage", "distance", "travel", "track")), ("v0", ("velocity", "speed", "vitesse")),
-          ("t", ("time", "temps")), ("x", ("displacement", "extension", "deplacement", "deflection")))
+          ("position", ("position", "stage", "distance", "travel", "track", "encoder")),
+          ("v0", ("velocity", "speed", "vitesse")), ("t", ("time", "temps")),
+          ("x", ("displacement", "extension", "deplacement", "deflection", "laser", "lds")))
 
 
 #: the roles a column of a given unit's dimension can have
@@ -177,6 +178,8 @@ def _role(name: str, unit: str = ""):
     displacement (um)" is the drive's position, not a normal load)."""
     key = name.strip().lower().replace(" ", "_").replace("-", "_")
     u = _unit_key(unit)
+    if u in _ANGLE_UNITS:
+        return None                      # an angle (a rotary encoder's, a disc's): no linear role
     fits = {r for r, table in _FITS if u in table} if u else None
     if fits is not None and not fits:
         fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
@@ -624,29 +627,34 @@ def _at_limit(v) -> str | None:
     return None
 
 
-#: a displacement column that moves one way by this fraction of the drive's travel (either way) is the slider's
-#: position: its net travel is the drive's less the change of the spring's extension, a few drops at most
+#: a displacement column that follows the drive's travel with a slope within this range is the slider's
+#: position: it moves with the drive less the spring's extension, which stays within a few drops
 SLIDER_TRAVEL = (0.7, 1.3)
+#: ... its residual about that line within this fraction of the drive's own spread
+SLIDER_SPREAD = 0.5
 
 
 def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> np.ndarray:
     """The spring's extension from a displacement column that is the
-    slider's position (a laser or encoder on the slider, named x): it moves
-    one way only (:func:`_one_way`) and about as far as the drive
-    (:data:`SLIDER_TRAVEL`), where an extension rises and falls every
-    cycle; the extension is the drive's travel less it, said in ``notes``.
-    Any other column is returned as it is."""
+    slider's position (a laser on the slider, named x or ``laser``): it
+    follows the drive's travel (one way, or back and forth on a
+    reciprocating stage) with a slope near 1 (:data:`SLIDER_TRAVEL`) and a
+    residual small beside the travel (:data:`SLIDER_SPREAD`), where an
+    extension rises and falls every cycle about a level; the extension is
+    the drive's travel less it, said in ``notes``.  Any other column is
+    returned as it is."""
     drive = pos - pos[0] if pos is not None else cumulative_trapezoid(vd, dt)
-    net_d = float(drive[-1])
-    if not (_one_way(x) and abs(net_d) > 0):
+    sd = float(np.std(drive))
+    if not sd > 0:
         return x
-    r = float(x[-1] - x[0]) / net_d
-    if not SLIDER_TRAVEL[0] <= r <= SLIDER_TRAVEL[1]:
+    slope, icpt = np.polyfit(drive, x, 1)
+    spread = float(np.std(x - (icpt + slope * drive)))
+    if not (SLIDER_TRAVEL[0] <= slope <= SLIDER_TRAVEL[1] and spread <= SLIDER_SPREAD * sd):
         return x
-    notes.append(f"column {name} moves one way only, {r:.2f} of the drive's travel: the slider's position, not the "
-                 f"spring's extension (which rises and falls every cycle); the extension is read as the drive's "
-                 f"travel less it, from 0 at the first sample (the friction level is then relative to that "
-                 f"sample's)")
+    notes.append(f"column {name} follows the drive's travel (slope {slope:.2f}): the slider's position, not the "
+                 f"spring's extension (which rises and falls every cycle about a level); the extension is read as "
+                 f"the drive's travel less it, from 0 at the first sample (the friction level is then relative "
+                 f"to that sample's)")
     return drive - (x - x[0])
 
 
