@@ -2477,3 +2477,24 @@ def test_a_sliders_position_named_x_is_read_as_the_drives_travel_less_it(tmp_pat
     rec = read_record(q, v0=v0)
     assert not any("slider's position" in n for n in rec.notes)
     assert float(np.max(np.abs(rec.x - ext))) < 1e-6
+
+
+def test_a_reading_quantised_coarser_than_its_noise_is_calibrated_through_its_quantiser():
+    """The weakening slider of :func:`_weakening_slider` (noise 0.2 % of fs)
+    read by an encoder of 0.02 mm (2.8 % of its drop): its stick ramps step
+    through the counts at v0 / q and its slips through them at their own
+    speeds, lines the baseline's replicates with white noise alone never
+    show.  Before, the replicates were not quantised and a line at such a
+    tone was named 'triggering' (p 2e-5, a 'load modulation' of 14); now
+    the step is found (:func:`.read.quantum`, to 1e-9 of 0.02), the
+    replicates are read through it, and the answer is 'none'.  The same
+    slider unquantised has no step."""
+    from lieng.diagnose.read import quantum
+
+    t, x = _weakening_slider()
+    q = 0.02
+    xq = q * np.round(x / q)
+    assert quantum(xq) == pytest.approx(q, rel=1e-9)
+    assert quantum(x) == 0.0
+    d = diagnose(record_from_arrays(t, xq, 2.0), 10.0)
+    assert d.effect == "none" and not d.effects

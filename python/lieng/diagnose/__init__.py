@@ -377,6 +377,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             raise LiengInputError(f"{rec.source}: a force record without --stiffness, and no sticks or reversal "
                                   f"ramps to read it from: give --stiffness (N/m)")
         pr.x = pr.x / k
+        pr.quantum = pr.quantum / k
         rec.x = rec.x / k
         rec.stiffness = k
         notes.append(f"tangential stiffness estimated from the sticks: {rec.stiffness:.4g} {rec.stiffness_unit} (the force rises at "

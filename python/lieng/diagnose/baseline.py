@@ -379,7 +379,7 @@ def trough_mean(pr, c_fn, x):
 def pr_like(pr: Prepared, x, y=None) -> Prepared:
     """The prepared record with another displacement (and normal channel)."""
     return Prepared(t=pr.t, x=x, vd=pr.vd, y=pr.y if y is None else y, strokes=pr.strokes, dt=pr.dt,
-                    flipped=pr.flipped, notes=[], pos=pr.pos)
+                    flipped=pr.flipped, notes=[], pos=pr.pos, quantum=pr.quantum)
 
 
 #: below this many samples per natural period x'' cannot be read inside a

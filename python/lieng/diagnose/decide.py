@@ -115,6 +115,10 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
         fb = fn * (1.0 + e)
         xs, vs, _ = simulate(pr, base, fb, ylow)
         xb = xs + sx * rng.standard_normal(xs.size)
+        if pr.quantum > 0:
+            # read through the record's quantiser (its grid's offset drawn): the steps' tones and the noise a
+            # reading holds below its step are the record's too
+            xb = pr.quantum * np.round(xb / pr.quantum + rng.uniform(-0.5, 0.5))
         yb = None
         if y is not None and ylow is not None:
             yb = y                       # the measured load drives the model: the channel is the record's

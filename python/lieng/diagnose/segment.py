@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.read import Record, cumulative_trapezoid, noise_level
+from lieng.diagnose.read import Record, cumulative_trapezoid, noise_level, quantum
 
 __all__ = ["Stroke", "Prepared", "Cycles", "prepare", "find_cycles", "estimate_fn", "smooth"]
 
@@ -102,6 +102,8 @@ class Prepared:
     notes: list = field(default_factory=list)
     #: the drive's position along the track (mm, the record's own direction)
     pos: np.ndarray | None = None
+    #: the step x is quantised to (mm; :func:`.read.quantum`), 0 when it is not
+    quantum: float = 0.0
 
     def stroke_slices(self):
         return [slice(s.j0, s.j0 + s.n) for s in self.strokes]
@@ -119,7 +121,8 @@ def crop(p: Prepared, a: int, b: int) -> Prepared:
             i0 = s.i0 + (lo - s.j0)
             strokes.append(Stroke(i0=i0, i1=i0 + (hi - lo), sign=s.sign, j0=lo - a))
     return Prepared(t=p.t[a:b], x=p.x[a:b], vd=p.vd[a:b], y=None if p.y is None else p.y[a:b], strokes=strokes,
-                    dt=p.dt, flipped=p.flipped, notes=[], pos=None if p.pos is None else p.pos[a:b])
+                    dt=p.dt, flipped=p.flipped, notes=[], pos=None if p.pos is None else p.pos[a:b],
+                    quantum=p.quantum)
 
 
 def head(p: Prepared, nmax: int) -> Prepared:
@@ -506,7 +509,7 @@ def prepare(rec: Record) -> Prepared:
     track = travel(rec.vd, dt)
     pos = np.concatenate([track[s.i0:s.i1] for s in st])
     return Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
-                    strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos)
+                    strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos, quantum=quantum(rec.x))
 
 
 def _zigzag_fast(x, h):
