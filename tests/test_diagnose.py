@@ -2498,3 +2498,28 @@ def test_a_reading_quantised_coarser_than_its_noise_is_calibrated_through_its_qu
     assert quantum(x) == 0.0
     d = diagnose(record_from_arrays(t, xq, 2.0), 10.0)
     assert d.effect == "none" and not d.effects
+
+
+def test_a_lasers_slider_position_beside_a_reciprocating_stages_encoder_is_read_as_the_extension(tmp_path):
+    """A reciprocating rig that writes its stage encoder and a laser on the
+    slider (``Stage Encoder [mm]``, ``Laser Sensor [mm]``: the slider's
+    position, back and forth with the stage): the extension is the stage's
+    travel less the laser's reading, equal to the true extension of
+    :func:`_reciprocating_coulomb` less its first sample to the file's
+    rounding, and the record reads as that slider's: stick-slip in every
+    stroke, effect none.  Before, 'Laser Sensor' and 'Encoder' named no
+    column and the record was refused; a laser that moves one way only was
+    the only slider position read."""
+    from lieng.diagnose import read_record
+
+    t, ext, v = _reciprocating_coulomb(lambda p: 1.0)
+    pos = np.concatenate([[0.0], np.cumsum(v[1:] * np.diff(t))])
+    laser = pos - ext + 7.0
+    p = tmp_path / "rig.csv"
+    p.write_text("time [s],Stage Encoder [mm],Laser Sensor [mm]\n"
+                 + "".join(f"{a:.4f},{b:.6f},{c:.6f}\n" for a, b, c in zip(t, pos, laser)))
+    rec = read_record(p)
+    assert any("follows the drive's travel" in n for n in rec.notes)
+    assert float(np.max(np.abs(rec.x - (ext - ext[0])))) < 1e-5
+    d = diagnose(rec, 20.0)
+    assert d.effect == "none" and d.n_cycles >= 20, d.reason
