@@ -537,6 +537,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                         f"with care")
     # the band an error of fn within u_fn makes, read on the record itself (the replicates' 1-DoF slider need
     # not follow fn as the record does)
+    if rec.zero_unknown:
+        withheld = {**withheld, "direction_asymmetry": "the extension's zero is not in the record (two positions "
+                                                       "whose origins it does not give, on a drive both ways)"}
     rd = fn_readings(pr, c, fn_used, u_fn, aux["D"], aux.get("ylow"), rec.y_is_force, arcs, skip=withheld)
     rows = decide(st, se, null, p_own=aux.get("p_own"), withheld=withheld, u_fn=u_fn, sizes=aux.get("sizes"),
                   fn_readings=rd, null_alt=null_alt)

@@ -125,6 +125,9 @@ class Record:
     drive_from_force: bool = False
     #: the time constant (s) of the high-pass undone on x (:func:`undo_highpass`), None when x was read as recorded
     highpass: float | None = None
+    #: x is an extension read from two positions on a drive that goes both ways, its zero set midway between
+    #: the directions' levels (:func:`_zero_between_directions`): a direction asymmetry cannot be read
+    zero_unknown: bool = False
 
     @property
     def dt(self) -> float:
@@ -547,9 +550,15 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         vd, recorded = np.full_like(t, float(v0)), False
     if not np.any(np.abs(vd) > 0):
         _fail(f"{path}: the drive never moves (all zero): no stick-slip")
+    n_notes = len(notes)
     if "x" in cols and "F" not in cols and pair is None:
         x = _extension_of_slider(x, vd, dt, pos, cols["x"][0], notes)
+    zero_unknown = False
+    if pair is not None or len(notes) > n_notes:
+        # an extension from two positions: its zero is where their origins put it
+        x, zero_unknown = _zero_between_directions(x, vd, notes)
     out = Record(t=t, x=x, vd=vd, y=y, y_is_force=y_force, drive_recorded=recorded, source=str(path), notes=notes,
+                 zero_unknown=zero_unknown,
                  stiffness_unknown="F" in cols and "x" not in cols and stiffness is None,
                  stiffness=stiffness if "F" in cols and "x" not in cols else None,
                  stiffness_unit="Pa/m" if "F" in cols and _is_stress(units["F"]) else
@@ -632,6 +641,11 @@ def _at_limit(v) -> str | None:
 SLIDER_TRAVEL = (0.7, 1.3)
 #: ... its residual about that line within this fraction of the drive's own spread
 SLIDER_SPREAD = 0.5
+#: ... or, on a short stroke (the extension's swing at each reversal a good part of it: a slope down to
+#: SLIDER_SLOPE_MIN), when it stands still while the drive moves: over most of the drive's steps (the
+#: median) it moves less than this fraction of them (a slider that sticks; an extension rises with the drive)
+SLIDER_STILL = 0.3
+SLIDER_SLOPE_MIN = 0.3
 
 
 def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> np.ndarray:
@@ -639,23 +653,51 @@ def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> np.nd
     slider's position (a laser on the slider, named x or ``laser``): it
     follows the drive's travel (one way, or back and forth on a
     reciprocating stage) with a slope near 1 (:data:`SLIDER_TRAVEL`) and a
-    residual small beside the travel (:data:`SLIDER_SPREAD`), where an
-    extension rises and falls every cycle about a level; the extension is
-    the drive's travel less it, said in ``notes``.  Any other column is
-    returned as it is."""
+    residual small beside the travel (:data:`SLIDER_SPREAD`), or, on short
+    strokes, with a smaller slope while it stands still over most of the
+    drive's steps (:data:`SLIDER_STILL`: a slider that sticks, where an
+    extension rises and falls every cycle about a level, rising with the
+    drive while the slider sticks); the extension is the drive's travel
+    less it, said in ``notes``.  Any other column is returned as it is."""
     drive = pos - pos[0] if pos is not None else cumulative_trapezoid(vd, dt)
     sd = float(np.std(drive))
     if not sd > 0:
         return x
     slope, icpt = np.polyfit(drive, x, 1)
     spread = float(np.std(x - (icpt + slope * drive)))
-    if not (SLIDER_TRAVEL[0] <= slope <= SLIDER_TRAVEL[1] and spread <= SLIDER_SPREAD * sd):
+    follows = SLIDER_TRAVEL[0] <= slope <= SLIDER_TRAVEL[1] and spread <= SLIDER_SPREAD * sd
+    if not follows and SLIDER_SLOPE_MIN <= slope <= SLIDER_TRAVEL[1]:
+        # steps over which the drive moves ten times x's noise: x's move over the drive's, median
+        step = float(np.median(np.abs(np.diff(drive))))
+        k = int(min(max(math.ceil(10.0 * noise_level(x) / step), 1) if step > 0 else x.size, x.size // 50))
+        if k >= 1:
+            dd, dx = drive[k:] - drive[:-k], x[k:] - x[:-k]
+            moving = np.abs(dd) > 0.5 * np.median(np.abs(dd))
+            follows = np.count_nonzero(moving) > 20 and \
+                float(np.median(np.abs(dx[moving]) / np.abs(dd[moving]))) < SLIDER_STILL
+    if not follows:
         return x
     notes.append(f"column {name} follows the drive's travel (slope {slope:.2f}): the slider's position, not the "
                  f"spring's extension (which rises and falls every cycle about a level); the extension is read as "
                  f"the drive's travel less it, from 0 at the first sample (the friction level is then relative "
                  f"to that sample's)")
     return drive - (x - x[0])
+
+
+def _zero_between_directions(x, vd, notes: list) -> tuple:
+    """An extension read from two positions (the stage's less the
+    slider's) on a drive that goes both ways: its zero, which the positions'
+    origins do not give, set midway between its median levels in the two
+    directions (the friction as large either way), and said; (x, True).  On
+    a drive one way, (x, False) as it is."""
+    fwd, bwd = vd > 0, vd < 0
+    if min(np.count_nonzero(fwd), np.count_nonzero(bwd)) < 0.1 * x.size:
+        return x, False
+    mid = 0.5 * (float(np.median(x[fwd])) + float(np.median(x[bwd])))
+    notes.append(f"the drive goes both ways and the extension's zero is not in the positions: set midway between "
+                 f"its levels in the two directions ({mid:.4g} mm from the positions' difference); the two "
+                 f"directions' friction levels cannot then be told apart (direction_asymmetry is not read)")
+    return x - mid, True
 
 
 def _one_way(x) -> bool:
