@@ -67,8 +67,8 @@ EXCEL_DAY_NAMES = ("date", "datetime", "date_time", "date/time", "timestamp", "t
 _LENGTH = {"": 1.0, "mm": 1.0, "um": 1e-3, "µm": 1e-3, "micron": 1e-3, "m": 1e3, "cm": 10.0, "nm": 1e-6,
            "in": 25.4, "inch": 25.4, "mil": 0.0254}
 _VELOCITY = {"": 1.0, "mm/s": 1.0, "um/s": 1e-3, "µm/s": 1e-3, "m/s": 1e3, "cm/s": 10.0, "mm/min": 1 / 60,
-             "mm/sec": 1.0, "um/sec": 1e-3, "µm/sec": 1e-3, "m/min": 1e3 / 60, "in/s": 25.4, "in/min": 25.4 / 60, "nm/s": 1e-6,
-             "um/min": 1e-3 / 60, "µm/min": 1e-3 / 60}
+             "mm/sec": 1.0, "um/sec": 1e-3, "µm/sec": 1e-3, "m/min": 1e3 / 60, "in/s": 25.4, "in/min": 25.4 / 60,
+             "nm/s": 1e-6, "um/min": 1e-3 / 60, "µm/min": 1e-3 / 60}
 _TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "msec": 1e-3, "us": 1e-6, "µs": 1e-6, "usec": 1e-6,
          "min": 60.0, "h": 3600.0, "hr": 3600.0}
 #: forces (N), also the gravitational units a balance or an old rig writes (gram-, kilogram-, pound-force)
@@ -550,11 +550,11 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         vd, recorded = np.full_like(t, float(v0)), False
     if not np.any(np.abs(vd) > 0):
         _fail(f"{path}: the drive never moves (all zero): no stick-slip")
-    n_notes = len(notes)
+    slider = False
     if "x" in cols and "F" not in cols and pair is None:
-        x = _extension_of_slider(x, vd, dt, pos, cols["x"][0], notes)
+        x, slider = _extension_of_slider(x, vd, dt, pos, cols["x"][0], notes)
     zero_unknown = False
-    if pair is not None or len(notes) > n_notes:
+    if pair is not None or slider:
         # an extension from two positions: its zero is where their origins put it
         x, zero_unknown = _zero_between_directions(x, vd, notes)
     out = Record(t=t, x=x, vd=vd, y=y, y_is_force=y_force, drive_recorded=recorded, source=str(path), notes=notes,
@@ -648,7 +648,7 @@ SLIDER_STILL = 0.3
 SLIDER_SLOPE_MIN = 0.3
 
 
-def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> np.ndarray:
+def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> tuple:
     """The spring's extension from a displacement column that is the
     slider's position (a laser on the slider, named x or ``laser``): it
     follows the drive's travel (one way, or back and forth on a
@@ -658,11 +658,12 @@ def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> np.nd
     drive's steps (:data:`SLIDER_STILL`: a slider that sticks, where an
     extension rises and falls every cycle about a level, rising with the
     drive while the slider sticks); the extension is the drive's travel
-    less it, said in ``notes``.  Any other column is returned as it is."""
+    less it, said in ``notes``: (extension, True).  Any other column is
+    returned as it is: (x, False)."""
     drive = pos - pos[0] if pos is not None else cumulative_trapezoid(vd, dt)
     sd = float(np.std(drive))
     if not sd > 0:
-        return x
+        return x, False
     slope, icpt = np.polyfit(drive, x, 1)
     spread = float(np.std(x - (icpt + slope * drive)))
     follows = SLIDER_TRAVEL[0] <= slope <= SLIDER_TRAVEL[1] and spread <= SLIDER_SPREAD * sd
@@ -676,12 +677,12 @@ def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> np.nd
             follows = np.count_nonzero(moving) > 20 and \
                 float(np.median(np.abs(dx[moving]) / np.abs(dd[moving]))) < SLIDER_STILL
     if not follows:
-        return x
+        return x, False
     notes.append(f"column {name} follows the drive's travel (slope {slope:.2f}): the slider's position, not the "
                  f"spring's extension (which rises and falls every cycle about a level); the extension is read as "
                  f"the drive's travel less it, from 0 at the first sample (the friction level is then relative "
                  f"to that sample's)")
-    return drive - (x - x[0])
+    return drive - (x - x[0]), True
 
 
 def _zero_between_directions(x, vd, notes: list) -> tuple:
