@@ -2459,7 +2459,8 @@ def test_a_sliders_position_named_x_is_read_as_the_drives_travel_less_it(tmp_pat
     'no_stick_slip' with a friction level of -11 mm.  Now the extension is
     the drive's travel less it, equal to the true extension less its first
     sample to the rounding of the file, and said in a note; the spring's
-    extension written as ``x`` is read as it is."""
+    extension written as ``x`` is read as it is, also one whose level climbs
+    with the drive nearly as fast as a slider would move."""
     from lieng.diagnose import read_record
 
     v0 = 2.0
@@ -2477,6 +2478,14 @@ def test_a_sliders_position_named_x_is_read_as_the_drives_travel_less_it(tmp_pat
     rec = read_record(q, v0=v0)
     assert not any("slider's position" in n for n in rec.notes)
     assert float(np.max(np.abs(rec.x - ext))) < 1e-6
+    # an extension whose level climbs with the drive (0.75 of its travel over five cycles: a slope and a
+    # spread a slider's position could have) rises with the drive in every stick: it is left as it is
+    t5, _, e5 = _ac_coupled_sawtooth(1e9, v0=v0, cycles=5)
+    climb = e5 + 0.75 * v0 * t5
+    q5 = tmp_path / "climbing.csv"
+    q5.write_text("t [s],x [mm]\n" + "".join(f"{a:.4f},{b:.7f}\n" for a, b in zip(t5, climb)))
+    rec = read_record(q5, v0=v0)
+    assert not any("slider's position" in n for n in rec.notes)
 
 
 def test_a_reading_quantised_coarser_than_its_noise_is_calibrated_through_its_quantiser():

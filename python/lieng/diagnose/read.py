@@ -646,6 +646,10 @@ SLIDER_SPREAD = 0.5
 #: median) it moves less than this fraction of them (a slider that sticks; an extension rises with the drive)
 SLIDER_STILL = 0.3
 SLIDER_SLOPE_MIN = 0.3
+#: ... and never when x moves over most of the drive's steps by this fraction of them or more (an extension
+#: whose level climbs with the drive as fast as a slider's position would: it rises at least at the drive's
+#: speed in every stick; a slider's, read through mains hum, stands still to about half its steps)
+SLIDER_MOVING = 0.75
 
 
 def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> tuple:
@@ -653,11 +657,12 @@ def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> tuple
     slider's position (a laser on the slider, named x or ``laser``): it
     follows the drive's travel (one way, or back and forth on a
     reciprocating stage) with a slope near 1 (:data:`SLIDER_TRAVEL`) and a
-    residual small beside the travel (:data:`SLIDER_SPREAD`), or, on short
-    strokes, with a smaller slope while it stands still over most of the
-    drive's steps (:data:`SLIDER_STILL`: a slider that sticks, where an
-    extension rises and falls every cycle about a level, rising with the
-    drive while the slider sticks); the extension is the drive's travel
+    residual small beside the travel (:data:`SLIDER_SPREAD`) while it does
+    not rise with the drive over most of its steps (:data:`SLIDER_MOVING`),
+    or, on short strokes, with a smaller slope while it stands still over
+    most of the drive's steps (:data:`SLIDER_STILL`: a slider that sticks,
+    where an extension rises and falls every cycle about a level, rising
+    with the drive while the slider sticks); the extension is the drive's travel
     less it, said in ``notes``: (extension, True).  Any other column is
     returned as it is: (x, False)."""
     drive = pos - pos[0] if pos is not None else cumulative_trapezoid(vd, dt)
@@ -665,17 +670,21 @@ def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> tuple
     if not sd > 0:
         return x, False
     slope, icpt = np.polyfit(drive, x, 1)
+    if not SLIDER_SLOPE_MIN <= slope <= SLIDER_TRAVEL[1]:
+        return x, False
     spread = float(np.std(x - (icpt + slope * drive)))
-    follows = SLIDER_TRAVEL[0] <= slope <= SLIDER_TRAVEL[1] and spread <= SLIDER_SPREAD * sd
-    if not follows and SLIDER_SLOPE_MIN <= slope <= SLIDER_TRAVEL[1]:
-        # steps over which the drive moves ten times x's noise: x's move over the drive's, median
-        step = float(np.median(np.abs(np.diff(drive))))
-        k = int(min(max(math.ceil(10.0 * noise_level(x) / step), 1) if step > 0 else x.size, x.size // 50))
-        if k >= 1:
-            dd, dx = drive[k:] - drive[:-k], x[k:] - x[:-k]
-            moving = np.abs(dd) > 0.5 * np.median(np.abs(dd))
-            follows = np.count_nonzero(moving) > 20 and \
-                float(np.median(np.abs(dx[moving]) / np.abs(dd[moving]))) < SLIDER_STILL
+    # over steps in which the drive moves ten times x's noise: x's move over the drive's, median (a slider
+    # that sticks stands still over most of them; an extension rises with the drive, at least as fast)
+    step = float(np.median(np.abs(np.diff(drive))))
+    k = int(min(max(math.ceil(10.0 * noise_level(x) / step), 1) if step > 0 else x.size, x.size // 50))
+    still = math.inf
+    if k >= 1:
+        dd, dx = drive[k:] - drive[:-k], x[k:] - x[:-k]
+        moving = np.abs(dd) > 0.5 * np.median(np.abs(dd))
+        if np.count_nonzero(moving) > 20:
+            still = float(np.median(np.abs(dx[moving]) / np.abs(dd[moving])))
+    follows = still < SLIDER_STILL or (SLIDER_TRAVEL[0] <= slope and spread <= SLIDER_SPREAD * sd
+                                       and still < SLIDER_MOVING)
     if not follows:
         return x, False
     notes.append(f"column {name} follows the drive's travel (slope {slope:.2f}): the slider's position, not the "
