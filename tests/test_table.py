@@ -84,7 +84,23 @@ def _lvm(multi=False, dec="."):
     return head + "X_Value\tFriction\tComment\n" + _rows(lambda a, b: f"{a:.6f}\t{b}\n".replace(".", dec))
 
 
+def _lvm_segments(k=4):
+    """A LabVIEW measurement file written a segment at a time (a channel
+    header before each segment's rows, LabVIEW's default in a loop), its
+    X_Value continuing from segment to segment."""
+    whole = _lvm()
+    head, rows = whole.split("X_Value\tFriction\tComment\n")
+    block = head[head.index("Channels"):]
+    body = rows.splitlines(keepends=True)
+    n = len(body) // k
+    out = head + "X_Value\tFriction\tComment\n" + "".join(body[:n])
+    for j in range(1, k):
+        out += block + "X_Value\tFriction\tComment\n" + "".join(body[j * n:(j + 1) * n if j < k - 1 else len(body)])
+    return out
+
+
 VARIANTS.update({"a LabVIEW measurement file (.lvm)": _lvm(),
+                 "a LabVIEW measurement file written a segment at a time": _lvm_segments(),
                  "a LabVIEW measurement file, an X column per channel": _lvm(multi=True),
                  "a LabVIEW measurement file with a decimal comma": _lvm(dec=",")})
 

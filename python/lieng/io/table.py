@@ -55,6 +55,8 @@ class Table:
         self.comment_header = False
         self.repeated = 0
         self.footer = 0
+        #: segments of a LabVIEW measurement file written with a channel header each, read as one table
+        self.segments = 1
         #: variables of an array file (.mat, .npz) not read as columns
         self.passed_over = []
         #: columns logged on fewer rows, filled linearly between their values:
@@ -88,6 +90,9 @@ class Table:
         for name, (k, n) in self.filled.items():
             out.append(f"column {name} has a value on {k} of {n} rows (logged less often): read linearly between "
                        f"its values")
+        if self.segments > 1:
+            out.append(f"a LabVIEW measurement file of {self.segments} segments, each under its own channel header: "
+                       f"read as one table")
         if self.footer:
             out.append(f"{self.footer} line{'s' if self.footer > 1 else ''} of text after the last row passed over "
                        f"(a summary, not part of the table)")
@@ -254,20 +259,47 @@ LVM_END = "***End_of_Header***"
 
 def _lvm_header(rows):
     """A LabVIEW measurement file's (.lvm) headers: (the row index of the
-    last ``***End_of_Header***`` line, its channel header's fields: key ->
-    the cells after it) or None when ``rows`` are not such a file.  The
-    column header row follows that line; ``Y_Unit_Label`` gives the
-    channels' units, ``X_Dimension`` what the X_Value column is."""
-    ends = [k for k, r in enumerate(rows[:PREAMBLE_SCAN * 4]) if r.strip().strip("\t").strip() == LVM_END]
-    if not ends or not rows[0].strip().lower().startswith("labview measurement"):
+    ``***End_of_Header***`` line that ends its first channel header (or its
+    file header, when it writes no channel header), that channel header's
+    fields: key -> the cells after it, the row indices of the later
+    segments' channel headers and their column-name rows, the number of
+    segments) or None when
+    ``rows`` are not such a file.  The column header row follows that line;
+    ``Y_Unit_Label`` gives the channels' units, ``X_Dimension`` what the
+    X_Value column is.  A file written a segment at a time (a header per
+    segment, LabVIEW's default in a loop) repeats the channel header before
+    each segment's rows."""
+    if not rows or not rows[0].strip().lower().startswith("labview measurement"):
         return None
+    ends = [k for k, r in enumerate(rows) if r.strip() == LVM_END]
+    if not ends:
+        return None
+    first = ends[1] if len(ends) > 1 else ends[0]
     fields = {}
-    lo = ends[-2] + 1 if len(ends) > 1 else 0
-    for r in rows[lo:ends[-1]]:
+    for r in rows[ends[0] + 1:first] if len(ends) > 1 else []:
         cells = [c.strip() for c in r.split("\t")]
         if cells and cells[0]:
             fields[cells[0]] = [c for c in cells[1:] if c]
-    return ends[-1], fields
+    later = []
+    for e in ends[2:]:
+        # the block: back from its end over the lines that do not start with a number (its keys)
+        lo = e
+        while lo - 1 > first and not _starts_with_number(rows[lo - 1]):
+            lo -= 1
+        names = next((k for k in range(e + 1, min(e + 4, len(rows))) if rows[k].strip()), None)
+        later.extend(range(lo, e + 1))
+        if names is not None and rows[names].split("\t")[0].strip() == "X_Value":
+            later.append(names)
+    return first, fields, later, 1 + len(ends[2:])
+
+
+def _starts_with_number(row: str) -> bool:
+    cell = row.strip().split("\t")[0].strip() if row.strip() else ""
+    try:
+        _number(cell, True)
+        return True
+    except ValueError:
+        return False
 
 
 def _lvm_names(names, units, fields):
@@ -394,6 +426,9 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     if not content:
         raise LiengInputError(f"{path}: empty file: expected a header {expect}")
     lvm = _lvm_header(rows)
+    if lvm is not None:
+        for k in lvm[2]:
+            rows[k] = ""                  # a later segment's channel header and column names
     skipped = _header_after_preamble(rows, content) if lvm is None else \
         next((i for i, k in enumerate(content) if k > lvm[0]), 0)
     k0 = content[skipped]
@@ -522,6 +557,8 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
     tab.dropped = dropped
     tab.preamble = skipped
+    if lvm is not None:
+        tab.segments = lvm[3]
     for c in np.flatnonzero(thin):
         have = np.isfinite(arr[:, c])
         if have.all():
