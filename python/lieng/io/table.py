@@ -263,8 +263,8 @@ def _lvm_header(rows):
     file header, when it writes no channel header), that channel header's
     fields: key -> the cells after it, the row indices of the later
     segments' channel headers and their column-name rows, the number of
-    segments) or None when
-    ``rows`` are not such a file.  The column header row follows that line;
+    segments) or None when ``rows`` are not such a file.  The column header
+    row follows that line;
     ``Y_Unit_Label`` gives the channels' units, ``X_Dimension`` what the
     X_Value column is.  A file written a segment at a time (a header per
     segment, LabVIEW's default in a loop) repeats the channel header before
@@ -294,6 +294,8 @@ def _lvm_header(rows):
 
 
 def _starts_with_number(row: str) -> bool:
+    """Whether a row's first TAB-separated cell is a number (a data row of a
+    LabVIEW file, not a header line's key)."""
     cell = row.strip().split("\t")[0].strip() if row.strip() else ""
     try:
         _number(cell, True)
