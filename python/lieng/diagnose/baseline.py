@@ -30,7 +30,7 @@ The simulator (:func:`simulate`) runs the compiled slider core
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
@@ -378,8 +378,7 @@ def trough_mean(pr, c_fn, x):
 
 def pr_like(pr: Prepared, x, y=None) -> Prepared:
     """The prepared record with another displacement (and normal channel)."""
-    return Prepared(t=pr.t, x=x, vd=pr.vd, y=pr.y if y is None else y, strokes=pr.strokes, dt=pr.dt,
-                    flipped=pr.flipped, notes=[], pos=pr.pos, quantum=pr.quantum)
+    return replace(pr, x=x, y=pr.y if y is None else y, notes=[])
 
 
 #: below this many samples per natural period x'' cannot be read inside a
