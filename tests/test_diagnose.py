@@ -541,6 +541,20 @@ def test_fn_uncertainty_is_checked(tmp_path, capsys, extra, needle):
     assert needle in err and len(err.splitlines()) == 1 and not (tmp_path / "o").exists()
 
 
+def test_a_table_without_a_header_is_asked_for_one(tmp_path, capsys):
+    """Columns of numbers with no header (``numpy.savetxt``'s default) are
+    not a TRC deck: one line saying how many columns there are and how to
+    name them, exit 2, no output directory (before: the deck reader's
+    message about card 1's columns 1-20)."""
+    rec = synthesize("none", 0)
+    p = tmp_path / "r.txt"
+    np.savetxt(p, np.column_stack([rec.t, rec.x]))
+    assert main(["diagnose", str(p), "--v0", repr(rec.v0), "-o", str(tmp_path / "o"), "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "2 columns of numbers and no header" in err and len(err.splitlines()) == 1
+    assert not (tmp_path / "o").exists()
+
+
 @pytest.mark.slow
 def test_the_twin_calibration_follows_the_stated_fn_uncertainty():
     """The replicates draw fn within the stated uncertainty and the twin

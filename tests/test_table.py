@@ -62,6 +62,17 @@ VARIANTS = {
     "a testing machine's pull test (its one force 'Load', the crosshead's 'Extension')":
         '"Time (s)","Extension (mm)","Load (N)"\n' + _rows(lambda a, b: f'"{a}","{a:.4f}","{b}"\n'),
     "a load cell is a force transducer": "Time [s],Load Cell [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "a catman export (a title, metadata, a channel name with a number in it, a unit row)":
+        "catman Professional ASCII export\nFile: C:\\data\\clamp3.bin\nComment: dry steel\n\n"
+        "Time  1 - default sample rate\tFriction force\tActuator\ns\tN\tmm\n"
+        + _rows(lambda a, b: f"{a}\t{b}\t{a:.4f}\n"),
+    "semicolons, a decimal comma and a unit row under the header": "Time;Friction force\ns;N\n"
+        + _rows(lambda a, b: f"{a};{b}\n".replace(".", ",")),
+    "semicolons, a decimal comma, a unit row and a drive": "Time;Friction force;Actuator position\ns;N;mm\n"
+        + _rows(lambda a, b: f"{a};{b};{a:.4f}\n".replace(".", ",")),
+    "an LVDT on the slider beside the force (the slider's position, not the extension)":
+        "Time (s)\tFt (N)\tLVDT slider (mm)\tActuator (mm)\n"
+        + _rows(lambda a, b: f"{a}\t{b}\t{3 + a - b / K * 1e3:.7f}\t{a:.4f}\n"),
 }
 
 
@@ -381,3 +392,14 @@ def test_an_american_or_suffixed_drive_unit_is_read(tmp_path, head, scale):
     p.write_text(f"t [s],F [N],{head}\n" + rows)
     r = read_record(p, stiffness=K)
     assert r.drive_recorded and float(np.median(r.vd)) == pytest.approx(0.5, rel=1e-6)
+
+
+def test_a_normal_channel_in_a_length_is_the_normal_reading(tmp_path):
+    """A normal channel written in a length ("Clamp gauge [mm]": a strain
+    gauge or LVDT on the clamp, an affine reading of the load) is the
+    normal reading y, not a normal force whose unit is refused."""
+    p = tmp_path / "r.csv"
+    p.write_text("Time [s],x [mm],Clamp gauge [mm]\n" + _rows(lambda a, b: f"{a},{b},{2.5 + 0.1 * b}\n"))
+    r = read_record(p, v0=1.0)
+    assert r.y is not None and not r.y_is_force
+    np.testing.assert_allclose(r.y, 2.5 + 0.1 * F, rtol=1e-9)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from lieng.errors import LiengInputError
 
-from lieng.cli.common import _is_table
+from lieng.cli.common import _headerless_columns, _is_table
 
 
 def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None, progress=None, rate=None,
@@ -25,7 +25,16 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
     else:                                   # a thesis-style TRC deck: OMNH gives fn
         if highpass is not None:
             raise LiengInputError(f"--highpass: applies to a table, not to a TRC deck ({data})")
-        rec, fn_deck = record_from_trc_deck(data, v0)
+        try:
+            rec, fn_deck = record_from_trc_deck(data, v0)
+        except LiengInputError:
+            ncol = _headerless_columns(data)
+            if ncol:
+                # not a deck: rows of as many numbers, without a header to say what they are
+                raise LiengInputError(
+                    f"{data}: {ncol} columns of numbers and no header naming them: add a first line such as "
+                    f"'t [s] F [N] position [mm]' (or 't [s] x [mm]'), in the columns' order") from None
+            raise
         if fn is None and fn_deck is not None:
             check_fn(rec, fn_deck, f"{data}: card OMNH ({fn_deck:g} Hz, the deck's natural frequency)",
                      "OMNH (rad/s) or give --fn")

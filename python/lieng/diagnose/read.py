@@ -165,9 +165,10 @@ def _check_v0(v0) -> None:
 _WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load", "normale", "clamp", "clamping")),
           ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement", "torque",
                  "drag", "f", "force")),
-          ("position", ("position", "stage", "distance", "travel", "track", "encoder")),
+          ("position", ("position", "stage", "distance", "travel", "track", "encoder", "actuator", "crosshead")),
           ("v0", ("velocity", "speed", "vitesse")), ("t", ("time", "temps")),
-          ("x", ("displacement", "extension", "deplacement", "deflection", "laser", "lds")))
+          ("x", ("displacement", "extension", "deplacement", "deflection", "laser", "lds", "lvdt", "dvrt",
+                 "capacitive", "eddy")))
 
 
 #: the roles a column of a given unit's dimension can have
@@ -196,6 +197,9 @@ def _role(name: str, unit: str = ""):
         words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
     named = [role for role, alts in _NAMES.items() if key in alts] + \
             [role for role, alts in _WORDS if words & set(alts)]
+    if fits is not None and "N" not in fits and "y" in fits:
+        # a normal channel in a length ("Clamp gauge [mm]", "Normal LVDT [um]"): a reading of the load, y
+        named = ["y" if r == "N" else r for r in named]
     # the first role the unit allows; else the first by name (whose unit check then names the column)
     return next((r for r in named if fits is None or r in fits), named[0] if named else None)
 
@@ -216,6 +220,13 @@ _SLIDER_WORDS = {"slider", "pin", "mass", "block", "carriage", "specimen", "samp
 _STAGE_WORDS = {"stage", "drive", "table", "motor", "belt", "actuator", "encoder", "driver"}
 
 
+def _is_slider(name: str) -> bool:
+    """Whether a column's name says it is the slider's own position (its
+    words name the slider and not the stage)."""
+    words = set(re.split(r"[^a-z0-9]+", name.strip().lower()))
+    return bool(words & _SLIDER_WORDS) and not words & _STAGE_WORDS
+
+
 def _slider_and_stage(roles):
     """((name, unit) of the slider's position, (name, unit) of the stage's)
     when the header's columns ``roles`` ((name, role, unit) each) have
@@ -225,7 +236,7 @@ def _slider_and_stage(roles):
         if role not in ("position", "x") or _unit_key(u2) not in _LENGTH:
             continue
         words = set(re.split(r"[^a-z0-9]+", n.strip().lower()))
-        if words & _SLIDER_WORDS and not words & _STAGE_WORDS:
+        if _is_slider(n):
             sl.append((n, u2))
         elif words & _STAGE_WORDS and not words & _SLIDER_WORDS:
             dr.append((n, u2))
@@ -412,6 +423,13 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         cols["position"], units["position"] = (dn, tab.columns[dn]), du
         notes_pair = (f"columns {sn} and {dn}: the slider's and the stage's positions; the spring's extension "
                       f"x is the stage's less the slider's")
+    slider_note = None
+    if "x" in cols and "F" in cols and _is_slider(cols["x"][0]):
+        # a force beside the slider's own position (an LVDT or laser on the slider): the force is the
+        # spring's, the position is not its extension
+        slider_note = (f"column {cols['x'][0]} is the slider's position, not the spring's extension: the friction "
+                       f"force {cols['F'][0]} is read, and it is not")
+        cols.pop("x"), units.pop("x")
     # a rotating drive's angle (a pin-on-disc's): not a linear drive, and its radius is not in the record
     angle = next((n for (n, role, _), u in zip(roles, tab.units) if role is None and _is_angle(n, u)), None)
     drive_note = None
@@ -485,7 +503,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (pull_note, notes_pair, mu_note, drive_note, serial_note, runs_note, stamps_note) if m]
+    notes = [m for m in (pull_note, notes_pair, slider_note, mu_note, drive_note, serial_note, runs_note,
+                         stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:

@@ -242,11 +242,19 @@ def _numeric_cells(row: str) -> int:
 
 def _data_cells(row: str) -> tuple:
     """A data row that may carry a column of words (a status, a comment,
-    blank on most rows): (its cells, its numbers) under the first separator
-    that splits it into two numbers at least, making up at least half of
-    its non-empty cells; (0, 0) for a row of text."""
-    return next(((len(cells), nums) for cells, nums, filled in _split_counted(row) if nums >= 2 and 2 * nums >= filled),
-                (0, 0))
+    blank on most rows): (its cells, its numbers) under the separator that
+    splits it into the most numbers, two at least, making up at least half
+    of its non-empty cells (on a tie, one whose cells are all numbers, else
+    the first); (0, 0) for a row of text.  (The most, not the first:
+    ``0,0000;4,507;10,329``, semicolons and decimal commas, splits at its
+    commas into two numbers of four cells, at its semicolons into three of
+    three; ``0,000;601,09`` at its commas into two of three, at its
+    semicolons into two of two.)"""
+    best, score = (0, 0), (0, False)
+    for cells, nums, filled in _split_counted(row):
+        if nums >= 2 and 2 * nums >= filled and (nums, nums == filled) > score:
+            best, score = (len(cells), nums), (nums, nums == filled)
+    return best
 
 
 #: the content lines searched for the header under an instrument's preamble
@@ -351,8 +359,10 @@ def _header_after_preamble(rows, content) -> int:
         seps = r"[,;\t]" if re.search(r"[,;\t]", prev) else r"\s+"
         if len([c for c in re.split(seps, prev.strip()) if c.strip()]) == width[i] and not _numeric_cells(prev):
             h -= 1
-    # a header has no number in it (a data row with a word in it is a bad row, named as such)
-    for c in re.split(r"[,;\t]|\s+", rows[content[h]].strip()):
+    # a header has no number in it (a data row with a word in it is a bad row, named as such); its cells split
+    # as the row is written (catman's "Time  1 - default sample rate" is one TAB-separated cell, not a number)
+    head = rows[content[h]]
+    for c in re.split(r"[,;\t]" if re.search(r"[,;\t]", head) else r"\s+", head.strip()):
         try:
             _number(_unquote(c), True)
             return 0
