@@ -66,6 +66,10 @@ VARIANTS = {
         "catman Professional ASCII export\nFile: C:\\data\\clamp3.bin\nComment: dry steel\n\n"
         "Time  1 - default sample rate\tFriction force\tActuator\ns\tN\tmm\n"
         + _rows(lambda a, b: f"{a}\t{b}\t{a:.4f}\n"),
+    "Spanish names": "Tiempo [s],Fuerza de fricci\u00f3n [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "Italian names, a decimal comma": "Tempo [s];Forza tangenziale [N]\n" + _rows(lambda a, b: f"{a};{b}\n"
+                                                                                   .replace(".", ",")),
+    "Portuguese names": "Tempo (s),For\u00e7a de atrito (N)\n" + _rows(lambda a, b: f"{a},{b}\n"),
     "semicolons, a decimal comma and a unit row under the header": "Time;Friction force\ns;N\n"
         + _rows(lambda a, b: f"{a};{b}\n".replace(".", ",")),
     "semicolons, a decimal comma, a unit row and a drive": "Time;Friction force;Actuator position\ns;N;mm\n"

@@ -162,13 +162,17 @@ def _check_v0(v0) -> None:
 #: words that give a column its role when its name is none of _NAMES
 #: ("Tangential force", "Normal load", "Stage position", "Clamp force", "Torque arm force", "F_arm"), first
 #: match wins (a normal word before a force's: "clamp_force" is the normal force)
-_WORDS = (("mu", ("coefficient", "cof", "coeff")), ("N", ("normal", "load", "normale", "clamp", "clamping")),
+_WORDS = (("mu", ("coefficient", "cof", "coeff", "coeficiente", "coefficiente", "reibwert", "reibungskoeffizient")),
+          ("N", ("normal", "load", "normale", "clamp", "clamping", "carico", "carga", "normalkraft", "auflast")),
           ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement", "torque",
-                 "drag", "f", "force")),
-          ("position", ("position", "stage", "distance", "travel", "track", "encoder", "actuator", "crosshead")),
-          ("v0", ("velocity", "speed", "vitesse")), ("t", ("time", "temps")),
+                 "drag", "f", "force", "friccion", "rozamiento", "attrito", "atrito", "tangenziale", "reibung",
+                 "reibkraft", "kraft", "fuerza", "forza", "forca")),
+          ("position", ("position", "stage", "distance", "travel", "track", "encoder", "actuator", "crosshead",
+                        "posicion", "posizione", "posicao", "weg")),
+          ("v0", ("velocity", "speed", "vitesse", "velocidad", "velocita", "velocidade", "geschwindigkeit")),
+          ("t", ("time", "temps", "tiempo", "tempo", "zeit")),
           ("x", ("displacement", "extension", "deplacement", "deflection", "laser", "lds", "lvdt", "dvrt",
-                 "capacitive", "eddy")))
+                 "capacitive", "eddy", "desplazamiento", "spostamento", "deslocamento", "verschiebung")))
 
 
 #: the roles a column of a given unit's dimension can have
