@@ -407,3 +407,15 @@ def test_a_normal_channel_in_a_length_is_the_normal_reading(tmp_path):
     r = read_record(p, v0=1.0)
     assert r.y is not None and not r.y_is_force
     np.testing.assert_allclose(r.y, 2.5 + 0.1 * F, rtol=1e-9)
+
+
+@pytest.mark.parametrize("name", ["v_drive", "v_stage [mm/s]", "Stage [mm/s]"])
+def test_a_drive_velocity_named_for_the_stage_is_the_drive(tmp_path, name):
+    """A column named for the stage or the drive whose unit (or ``v``) says
+    it is a velocity ("v_drive" in a MATLAB file, "v_stage [mm/s]") is the
+    drive velocity, not a position whose unit is refused (found on an
+    independent generator's records)."""
+    p = tmp_path / "r.csv"
+    p.write_text(f"t [s],F [N],{name}\n" + _rows(lambda a, b: f"{a},{b},2.5\n"))
+    r = read_record(p, stiffness=K)
+    assert r.drive_recorded and np.allclose(r.vd, 2.5)

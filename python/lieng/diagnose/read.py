@@ -201,10 +201,16 @@ def _role(name: str, unit: str = ""):
         words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
     named = [role for role, alts in _NAMES.items() if key in alts] + \
             [role for role, alts in _WORDS if words & set(alts)]
+    if "v" in words and words & _STAGE_WORDS:
+        named.insert(0, "v0")            # "v_drive", "v_stage": the drive's velocity, not its position
     if fits is not None and "N" not in fits and "y" in fits:
         # a normal channel in a length ("Clamp gauge [mm]", "Normal LVDT [um]"): a reading of the load, y
         named = ["y" if r == "N" else r for r in named]
-    # the first role the unit allows; else the first by name (whose unit check then names the column)
+    # the first role the unit allows; else the one role of the unit's dimension when it has one (a velocity
+    # is the drive's, a time the clock) and the name gave a role; else the first by name (whose unit check
+    # then names the column)
+    if named and fits is not None and not set(named) & fits and len(fits) == 1:
+        return next(iter(fits))
     return next((r for r in named if fits is None or r in fits), named[0] if named else None)
 
 
