@@ -437,8 +437,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if "x" in cols and "F" in cols and _is_slider(cols["x"][0]):
         # a force beside the slider's own position (an LVDT or laser on the slider): the force is the
         # spring's, the position is not its extension
-        slider_note = (f"column {cols['x'][0]} is the slider's position, not the spring's extension: the friction "
-                       f"force {cols['F'][0]} is read, and it is not")
+        slider_note = (f"column {cols['x'][0]} is the slider's position, not the spring's extension: not read "
+                       f"(the friction force {cols['F'][0]} is)")
         cols.pop("x"), units.pop("x")
     # a rotating drive's angle (a pin-on-disc's): not a linear drive, and its radius is not in the record
     angle = next((n for (n, role, _), u in zip(roles, tab.units) if role is None and _is_angle(n, u)), None)
