@@ -419,3 +419,15 @@ def test_a_drive_velocity_named_for_the_stage_is_the_drive(tmp_path, name):
     p.write_text(f"t [s],F [N],{name}\n" + _rows(lambda a, b: f"{a},{b},2.5\n"))
     r = read_record(p, stiffness=K)
     assert r.drive_recorded and np.allclose(r.vd, 2.5)
+
+
+@pytest.mark.parametrize("name", ["x_drive (um)", "Drive [um]", "s_stage [um]"])
+def test_a_length_named_for_the_drive_is_its_position(tmp_path, name):
+    """A length column named for the drive or the stage ("x_drive (um)" in
+    a crank tribometer's export, "Drive [um]") is the drive's position, not
+    a spring's extension nor a velocity whose unit is refused (found on an
+    independent generator's records: 36 of 48 refused)."""
+    p = tmp_path / "r.csv"
+    p.write_text(f"t [s],F [N],{name}\n" + _rows(lambda a, b: f"{a},{b},{2500.0 * a:.6f}\n"))
+    r = read_record(p, stiffness=K)
+    assert r.drive_recorded and np.allclose(r.vd[5:-5], 2.5, rtol=1e-3)

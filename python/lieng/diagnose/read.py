@@ -203,6 +203,10 @@ def _role(name: str, unit: str = ""):
             [role for role, alts in _WORDS if words & set(alts)]
     if "v" in words and words & _STAGE_WORDS:
         named.insert(0, "v0")            # "v_drive", "v_stage": the drive's velocity, not its position
+    elif words & {"x", "pos", "p", "s"} and words & _STAGE_WORDS:
+        named.insert(0, "position")      # "x_drive", "s_stage": the drive's position, not the extension
+    if fits is not None and "position" in fits and words & _STAGE_WORDS and not set(named) & fits:
+        named.insert(0, "position")      # "Drive [mm]": a length named for the drive is its position
     if fits is not None and "N" not in fits and "y" in fits:
         # a normal channel in a length ("Clamp gauge [mm]", "Normal LVDT [um]"): a reading of the load, y
         named = ["y" if r == "N" else r for r in named]
