@@ -47,19 +47,6 @@ def _is_table(path) -> bool:
     return bool(re.search(r"[A-Za-z#]", words))
 
 
-def _headerless_columns(path) -> int:
-    """The number of columns when the file's first lines (its first 64 kB)
-    are all rows of as many plain numbers, two or more, separated by blanks
-    (a table written without a header: ``numpy.savetxt``'s default), else 0."""
-    from lieng.io.inputs import head, split_lines
-
-    rows = [r.split() for r in split_lines(head(Path(path), 65536))[:-1] if r.strip()]
-    num = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?")
-    if len(rows) < 20 or any(len(r) != len(rows[0]) or not all(num.fullmatch(c) for c in r) for r in rows):
-        return 0
-    return len(rows[0]) if len(rows[0]) >= 2 else 0
-
-
 def _cell(v):
     """A CSV cell: the float, or None (an empty cell) for an undefined value."""
     v = float(v)

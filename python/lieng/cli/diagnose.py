@@ -9,7 +9,7 @@ from pathlib import Path
 
 from lieng.errors import LiengInputError
 
-from lieng.cli.common import _headerless_columns, _is_table
+from lieng.cli.common import _is_table
 
 
 def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None, progress=None, rate=None,
@@ -19,6 +19,7 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
     ``diagnose --batch``).  Returns the :class:`lieng.diagnose.Diagnosis`."""
     from lieng.diagnose import diagnose, read_record, record_from_trc_deck
     from lieng.diagnose.read import check_fn
+    from lieng.io.table import headerless_columns
 
     if _is_table(data):
         rec = read_record(data, v0=v0, stiffness=stiffness, rate=rate, highpass=highpass)
@@ -28,7 +29,7 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
         try:
             rec, fn_deck = record_from_trc_deck(data, v0)
         except LiengInputError:
-            ncol = _headerless_columns(data)
+            ncol = headerless_columns(data)
             if ncol:
                 # not a deck: rows of as many numbers, without a header to say what they are
                 raise LiengInputError(

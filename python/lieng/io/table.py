@@ -15,9 +15,9 @@ from typing import Sequence
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.io.inputs import read_bytes, read_table_text, split_lines
+from lieng.io.inputs import head, read_bytes, read_table_text, split_lines
 
-__all__ = ["read_columns", "read_table", "Table"]
+__all__ = ["read_columns", "read_table", "headerless_columns", "Table"]
 
 #: the longest line read (characters): a longer one is not a table row
 MAX_LINE = 100_000
@@ -238,6 +238,14 @@ def _numeric_cells(row: str) -> int:
     """The number of cells of a row that is all numbers (two at least) under
     some separator, else 0."""
     return next((len(cells) for cells, nums, _ in _split_counted(row) if len(cells) >= 2 and nums == len(cells)), 0)
+
+
+def headerless_columns(path) -> int:
+    """The number of columns when the file's first lines (its first 64 kB,
+    twenty rows at least) are all rows of as many numbers, two or more (a
+    table written without a header: ``numpy.savetxt``'s default), else 0."""
+    counts = [_numeric_cells(r) for r in split_lines(head(path, 65536))[:-1] if r.strip()]
+    return counts[0] if len(counts) >= 20 and counts[0] >= 2 and all(n == counts[0] for n in counts) else 0
 
 
 def _data_cells(row: str) -> tuple:
