@@ -431,3 +431,71 @@ def test_a_length_named_for_the_drive_is_its_position(tmp_path, name):
     p.write_text(f"t [s],F [N],{name}\n" + _rows(lambda a, b: f"{a},{b},{2500.0 * a:.6f}\n"))
     r = read_record(p, stiffness=K)
     assert r.drive_recorded and np.allclose(r.vd[5:-5], 2.5, rtol=1e-3)
+
+
+# a rotary rig (a torsion spring turned by a motor, a rheometer's tribology cell, a clutch): a friction torque,
+# angles; read as a linear record is, the twist in mrad where a linear record's extension is in mm
+ROTARY = {
+    "torque in N·m, a rheometer's unit row with an empty cell": (
+        "Point No.\tTime\tTorque\n\t[s]\t[N·m]\n" + "".join(f"{i + 1}\t{T[i]}\t{F[i]}\n" for i in range(200)), 1.0),
+    "torque in N m": ("Time [s],Torque [N m]\n" + _rows(lambda a, b: f"{a},{b}\n"), 1.0),
+    "torque in mNm": ("Time [s],Moment [mNm]\n" + _rows(lambda a, b: f"{a},{1e3 * b:.6g}\n"), 1.0),
+    "torque in N·mm, an oscilloscope's CH1": ("TIME (s),CH1 Torque (N·mm)\n" + _rows(lambda a, b: f"{a},{1e3 * b:.6g}\n"),
+                                               1.0),
+    "torque in lbf·in": ("t [s],Torque [lbf·in]\n" + _rows(lambda a, b: f"{a},{float(b) / 0.1129848290!r}\n"), 1.0),
+}
+
+
+@pytest.mark.parametrize("what", sorted(ROTARY))
+def test_a_torque_record_reads_as_a_force_record(tmp_path, what):
+    """A friction torque T (N·m) over a torsional stiffness k (N·m/rad) is
+    the twist T / k, held in mrad as a force over N/m is held in mm: the
+    same numbers as the plain force record's x, the drive --v0 in rad/s
+    (mrad/s within), the unit said (``length_unit``) and in a note."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    p = tmp_path / "torque.txt"
+    text, _ = ROTARY[what]
+    p.write_bytes(text.encode("utf-8"))
+    r = read_record(p, v0=1e-3, stiffness=K)
+    assert r.length_unit == "mrad" and ref.length_unit == "mm"
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-9)
+    np.testing.assert_allclose(r.vd, ref.vd, rtol=1e-12)
+    assert any("rotary record" in n and f"N·m/rad" in n for n in r.notes)
+
+
+def test_a_twist_in_degrees_and_the_motors_angle_are_the_extension_and_the_drive(tmp_path):
+    """A torsion spring's twist logged as an angle ("Spring deflection[deg]")
+    is the extension x, and the motor's angle the drive's position, both in
+    mrad (1 deg = pi/0.18 mrad); a bare --v0 would be in the record's angle
+    unit per second (deg/s); a "Drive speed [rpm]" column is the drive."""
+    tw = 0.3 + 0.05 * np.sin(2 * np.pi * 7.0 * T)            # deg
+    mot = 2.0 * T                                           # deg: 2 deg/s
+    body = "".join(f"{i + 1},{T[i]},{tw[i]:.9g},{mot[i]:.9g},36.{i % 10}\n" for i in range(200))
+    p = tmp_path / "logger.csv"
+    p.write_text('"No.","Time[s]","Spring deflection[deg]","Motor angle[deg]","Oil temp[degC]"\n' + body)
+    r = read_record(p)
+    np.testing.assert_allclose(r.x, tw * np.pi / 0.18, rtol=1e-6)
+    assert np.median(r.vd) == pytest.approx(2.0 * np.pi / 0.18, rel=1e-6)
+    assert r.length_unit == "mrad" and any("N·m/deg" in n and "deg/s" in n for n in r.notes)
+    # the drive as an angular speed in rpm, and with no drive column a bare --v0 in deg/s
+    q = tmp_path / "rpm.csv"
+    q.write_text("Time [s],Twist [deg],Drive speed [rpm]\n" + "".join(f"{T[i]},{tw[i]:.9g},0.5\n" for i in range(200)))
+    assert np.median(read_record(q).vd) == pytest.approx(0.5 * 2e3 * np.pi / 60, rel=1e-12)
+    s = tmp_path / "bare.csv"
+    s.write_text("Time [s],Twist [deg]\n" + "".join(f"{T[i]},{tw[i]:.9g}\n" for i in range(200)))
+    assert np.median(read_record(s, v0=2.0).vd) == pytest.approx(2.0 * np.pi / 0.18, rel=1e-12)
+
+
+def test_nm_is_a_nanometre_and_Nm_a_newton_metre(tmp_path):
+    """Units are read as written: "x [nm]" is a displacement in nanometres,
+    "Torque [Nm]" a torque (its N a capital), and a force record with a
+    disc's angle beside it stays linear (the angle not read)."""
+    p = tmp_path / "nm.csv"
+    p.write_text("t [s],x [nm],v0 [nm/s]\n" + "".join(f"{T[i]},{1e6 * F[i]:.9g},1000\n" for i in range(200)))
+    r = read_record(p)
+    assert r.length_unit == "mm"
+    np.testing.assert_allclose(r.x, F, rtol=1e-9)
+    q = tmp_path / "disc.csv"
+    q.write_text("t [s],F [N],Angle [deg]\n" + "".join(f"{T[i]},{F[i]},{3 * i}\n" for i in range(200)))
+    r = read_record(q, v0=1.0, stiffness=K)
+    assert r.length_unit == "mm" and any("angle" in n and "not read" in n for n in r.notes)

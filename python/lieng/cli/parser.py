@@ -144,7 +144,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "'#' comments; rows with a missing value left out), a LabVIEW .lvm file, a spreadsheet .xlsx (its first "
                     "sheet, read as such a table), a MATLAB .mat (v4-v7) or NumPy .npz file of vectors named so, or a TRC deck")
     dg.add_argument("--v0", type=float, metavar="MM_S",
-                    help="drive velocity (mm/s) when the record has no v0/position column")
+                    help="drive velocity (mm/s) when the record has no v0/position column (a rotary record's: "
+                         "its angle unit per second, rad/s when it has no angle column)")
     dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "
                     "estimated from the slips when not given (a TRC deck gives it: OMNH)")
     dg.add_argument("--fn-uncertainty", type=float, metavar="REL",
@@ -153,7 +154,8 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--rate", type=float, metavar="HZ", help="sampling rate (Hz) of a record without a time "
                     "column (its rows are then evenly spaced samples)")
     dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
-                    "record; estimated from the sticks when not given")
+                    "record (a torque record's: N·m per its angle unit, per rad when it has no angle column); "
+                    "estimated from the sticks when not given")
     dg.add_argument("--highpass", type=float, metavar="TAU_S", help="the friction channel was recorded AC-coupled "
                     "(a piezoelectric force cell's charge amplifier): the time constant (s) of its high-pass, "
                     "undone before the diagnosis (a steady force otherwise sinks towards zero, read as a drifting "

@@ -116,6 +116,9 @@ class Diagnosis:
     notes: list = field(default_factory=list)
     warnings: list = field(default_factory=list)
     plot: dict = field(default_factory=dict, repr=False)
+    #: the unit of x and of every length here (mm; mrad for a rotary record, its twist; the JSON's keys that
+    #: end in _mm hold it)
+    length_unit: str = "mm"
 
     def to_json(self) -> dict:
         d = {"effect": self.effect, "reason": self.reason, "gain": self.gain, "gain_interval_90": self.gain_interval,
@@ -132,7 +135,7 @@ class Diagnosis:
              "cycles": self.n_cycles, "drop_mm": self.drop if self.drop > 0 else None,
              "fitted": {"baseline": self.baseline.to_json() if self.baseline else None,
                         "extended": self.extended.to_json() if self.extended else None},
-             "units": {"x": "mm", "t": "s", "velocity": "mm/s", "frequency": "Hz",
+             "units": {"x": self.length_unit, "t": "s", "velocity": f"{self.length_unit}/s", "frequency": "Hz",
                        "effect_size": "per evidence row: over the drop D, or relative"},
              "notes": self.notes, "warnings": self.warnings}
         return _finite(d)
@@ -188,6 +191,12 @@ def _extend(k, base, train, pr, c, fn, st, aux, win, trough):
             if not e_tr < e_train0:   # nested: the extension's own term at zero is the baseline itself
                 ext, e_tr = base, e_train0
     return ext, e_tr, e_train0, cands
+
+
+def _in_units(d: Diagnosis, rec: Record) -> Diagnosis:
+    """``d`` with the record's length unit (mm, or a rotary record's mrad)."""
+    d.length_unit = rec.length_unit
+    return d
 
 
 def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=None) -> Diagnosis:
@@ -404,7 +413,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     nofn = None
     if fn is None:
         if c0.n < 4 and fd is None:
-            return _no_stick_slip(pr, c0.n, notes, warnings)
+            return _in_units(_no_stick_slip(pr, c0.n, notes, warnings), rec)
         if fd is not None:
             c1 = find_cycles(pr, fd)
             fd2, fse2, _ = estimate_fn(pr, c1, fd) if c1.n >= 3 else (None, None, 0)
@@ -491,7 +500,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                         f"weak below about 20")
     c = find_cycles(pr, fn_used)
     if c.n < 4:
-        return _no_stick_slip(pr, c.n, notes, warnings, fn_used, src, fd, fse)
+        return _in_units(_no_stick_slip(pr, c.n, notes, warnings, fn_used, src, fd, fse), rec)
     ratio = max((stick_ratios(pr, cc)[1] for cc in (c0, c)), key=np.size)
     if ratio.size >= 2 and np.median(ratio) > STICK_FASTEST:
         warnings.append(f"x rises at {np.median(ratio):.3g} times the drive velocity in the sticks (median over "
@@ -716,11 +725,12 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     gof.update(creep)
     if named and detected:
         notes.append("not named: " + det)
-    return Diagnosis(effect=effect, reason=reason, effects=effects, detected=detected, evidence=_finite(rows),
+    return _in_units(Diagnosis(effect=effect, reason=reason, effects=effects, detected=detected,
+                               evidence=_finite(rows),
                      goodness=_finite(gof),
                      fn=fn_used, fn_source=src, fn_uncertainty=u_fn,
                      fn_data=fd, fn_data_se=fse, baseline=base, extended=primary_ext,
                      baseline_error=g0["e0"], extended_error=g0["e1"], gain=g0["gain"] if named else 0.0,
                      gain_interval=g0["interval"] if named else [0.0, 0.0], n_cycles=c.n, n_replicates=nrep,
                      drop=aux["D"], notes=notes, warnings=warnings,
-                     plot=_plot_data(pr, c, fn_used, g0, tsplit))
+                     plot=_plot_data(pr, c, fn_used, g0, tsplit)), rec)

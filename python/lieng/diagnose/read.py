@@ -16,6 +16,14 @@ units in the header in brackets or the defaults below):
   coefficient column (``mu``, ``COF``) stands for F: times the normal force
   column when there is one, else a force in units of the (constant) load,
   whose scale only the sticks can give.
+* **rotary records** (a torsion spring turned by a motor: a rheometer's
+  tribology cell, a clutch or bearing rig): a friction torque (N·m, N m,
+  Nm, mN·m, N·mm, lbf·in, ...) with ``stiffness`` in N·m per the record's
+  angle unit, or the spring's twist as an angle (deflection, twist: deg,
+  rad, mrad), beside a motor's angle or angular speed (deg/s, rad/s, rpm);
+  read as a linear record is, the angles in mrad where a linear record's
+  lengths are in mm (``Record.length_unit``); a bare ``v0`` is in the
+  record's angle unit per second (its twist's or drive's unit, else rad).
 
 A spreadsheet workbook (``.xlsx``: its first worksheet) is read as such a
 table, a MATLAB ``.mat`` or NumPy ``.npz`` file by its vectors' names.
@@ -128,6 +136,8 @@ class Record:
     #: x is an extension read from two positions on a drive that goes both ways, its zero set midway between
     #: the directions' levels (:func:`_zero_between_directions`): a direction asymmetry cannot be read
     zero_unknown: bool = False
+    #: the unit of x (mm; mrad for a rotary record: a torque and angles, :func:`_rotary`)
+    length_unit: str = "mm"
 
     @property
     def dt(self) -> float:
@@ -165,6 +175,7 @@ def _check_v0(v0) -> None:
 _WORDS = (("mu", ("coefficient", "cof", "coeff", "coeficiente", "coefficiente", "reibwert", "reibungskoeffizient")),
           ("N", ("normal", "load", "normale", "clamp", "clamping", "carico", "carga", "normalkraft", "auflast")),
           ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement", "torque",
+                 "moment", "drehmoment", "couple", "par",
                  "drag", "f", "force", "friccion", "rozamiento", "attrito", "atrito", "tangenziale", "reibung",
                  "reibkraft", "kraft", "fuerza", "forza", "forca")),
           ("position", ("position", "stage", "distance", "travel", "track", "encoder", "actuator", "crosshead",
@@ -189,6 +200,8 @@ def _role(name: str, unit: str = ""):
     if u in _ANGLE_UNITS:
         return None                      # an angle (a rotary encoder's, a disc's): no linear role
     fits = {r for r, table in _FITS if u in table} if u else None
+    if u and torque_scale(unit) is not None:
+        fits = {"F"}                     # a torque ("Nm" is not a nanometre): the friction of a rotary rig
     if fits is not None and not fits:
         fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
     # (the words with their accents taken off: "Déplacement", "Force normale")
@@ -219,7 +232,36 @@ def _role(name: str, unit: str = ""):
 
 
 #: the units and words of an angle column (a pin-on-disc's or a rotary stage's)
-_ANGLE_UNITS = {"deg", "degree", "degrees", "rad", "radian", "radians", "rev", "revolutions", "turns", "°"}
+_ANGLE_UNITS = {"deg", "degree", "degrees", "rad", "radian", "radians", "rev", "revolutions", "turns", "°", "mrad",
+                "µrad", "urad", "arcmin", "arcsec"}
+#: a rotary record's angles in its internal unit, the milliradian (as a linear record's lengths are in mm: a
+#: torque over a torsional stiffness in N·m/rad, times 1000, is the twist in mrad as a force over N/m is mm)
+_ANGLE = {"rad": 1e3, "radian": 1e3, "radians": 1e3, "mrad": 1.0, "µrad": 1e-3, "urad": 1e-3,
+          "deg": math.pi / 0.18, "degree": math.pi / 0.18, "degrees": math.pi / 0.18, "°": math.pi / 0.18,
+          "arcmin": math.pi / 10.8, "arcsec": math.pi / 648.0, "rev": 2e3 * math.pi, "revolutions": 2e3 * math.pi,
+          "turns": 2e3 * math.pi}
+#: angular velocities (mrad/s)
+_ANGULAR_VELOCITY = {"rad/s": 1e3, "mrad/s": 1.0, "deg/s": math.pi / 0.18, "°/s": math.pi / 0.18,
+                     "rpm": 2e3 * math.pi / 60, "1/min": 2e3 * math.pi / 60, "min-1": 2e3 * math.pi / 60,
+                     "min^-1": 2e3 * math.pi / 60, "rev/min": 2e3 * math.pi / 60, "r/min": 2e3 * math.pi / 60,
+                     "rev/s": 2e3 * math.pi, "rps": 2e3 * math.pi, "deg/min": math.pi / 10.8, "rad/min": 1e3 / 60}
+#: torques (N·m): a force times a length, its N written in capitals ("Nm" is a newton metre, "nm" a nanometre)
+_TORQUE_RE = re.compile(r"^\s*(?P<p>[mµμuk]?)N\s*[·*.⋅×x\- ]?\s*(?P<l>mm|cm|m)\s*$")
+_TORQUE_OTHER = {"lbf·in": 0.1129848290, "lbfin": 0.1129848290, "in·lbf": 0.1129848290, "inlbf": 0.1129848290,
+                 "lbf·ft": 1.3558179483, "lbfft": 1.3558179483, "ft·lbf": 1.3558179483, "ftlbf": 1.3558179483,
+                 "ozf·in": 0.0070615518, "ozfin": 0.0070615518, "in·ozf": 0.0070615518, "kgf·m": 9.80665,
+                 "kgfm": 9.80665, "kgf·cm": 0.0980665, "kgfcm": 0.0980665, "gf·cm": 9.80665e-5, "gfcm": 9.80665e-5}
+
+
+def torque_scale(unit: str) -> float | None:
+    """The factor from ``unit`` to N·m when it is a torque (N·m, N m, Nm,
+    mN·m, µNm, N·mm, N·cm, kN·m, lbf·in, ozf·in, kgf·cm, ...), else None."""
+    m = _TORQUE_RE.match(unit.replace("\u03bc", "\u00b5"))
+    if m:
+        pre = {"": 1.0, "m": 1e-3, "µ": 1e-6, "u": 1e-6, "k": 1e3}[m.group("p")]
+        return pre * {"m": 1.0, "cm": 1e-2, "mm": 1e-3}[m.group("l")]
+    key = re.sub(r"[\s*.⋅×\-]", "·", unit.strip().lower()).replace("··", "·")
+    return _TORQUE_OTHER.get(key, _TORQUE_OTHER.get(key.replace("·", "")))
 _ANGLE_WORDS = {"angle", "theta", "rotation", "revolution", "revolutions", "revs", "azimuth"}
 
 
@@ -255,6 +297,80 @@ def _slider_and_stage(roles):
         elif words & _STAGE_WORDS and not words & _SLIDER_WORDS:
             dr.append((n, u2))
     return (sl[0], dr[0]) if len(sl) == 1 and len(dr) == 1 else None
+
+
+#: words that name a rotary rig's twist (the torsion spring's extension) and its drive
+_TWIST_WORDS = {"deflection", "twist", "extension", "spring", "torsion", "displacement", "deformation", "windup",
+                "wind", "coupling"}
+_ROTOR_WORDS = _STAGE_WORDS | {"input", "rotor", "spindle", "shaft", "angle", "position", "rotation", "speed",
+                               "velocity", "omega"}
+
+
+def _rotational(unit: str) -> bool:
+    """Whether ``unit`` is an angle's or an angular speed's (a rotary record's column)."""
+    k = _unit_key(unit)
+    return k in _ANGLE or k in _ANGULAR_VELOCITY or k.replace("°", "deg") in _ANGULAR_VELOCITY
+
+
+def _rotary(path, roles, tab, cols, units):
+    """A rotary rig's record (a torsion spring turned by a motor, a clutch,
+    a disc in a bearing: a friction torque and angles): its columns read
+    into ``cols``/``units`` as a linear record's are, the torque in N·m (as
+    N), the angles in mrad (as mm), the angular speeds in mrad/s (as mm/s);
+    returns {"unit": the record's angle unit, "note": ...}, or None when
+    the record is not rotary (no torque, and no angle named as the spring's
+    twist).  An angle named as the twist (deflection, twist, spring) is the
+    extension x; one named for the motor or the drive (or an angle of no
+    such name beside them) the drive's angle; an angular speed the drive's
+    velocity.  The record's angle unit (the twist's, else the drive's, else
+    rad) is the one a bare --stiffness (N·m per it) and --v0 (it per
+    second) are read in."""
+    def words(n):
+        return set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", n.strip().lower())
+                            .encode("ascii", "ignore").decode()))
+
+    def speed_key(u):
+        k = _unit_key(u)
+        return k if k in _ANGULAR_VELOCITY else k.replace("°", "deg")
+
+    angles, speeds = [], []
+    for (n, role, u), u0 in zip(roles, tab.units):
+        u = u or u0
+        if _unit_key(u) in _ANGLE:
+            angles.append((n, u))
+        elif speed_key(u) in _ANGULAR_VELOCITY:
+            speeds.append((n, u))
+    torque = "F" in cols and torque_scale(units["F"]) is not None
+    twist = [(n, u) for n, u in angles if words(n) & _TWIST_WORDS and not words(n) & (_STAGE_WORDS | {"input"})]
+    if not torque and not ("x" not in cols and "F" not in cols and twist):
+        return None
+    used = []
+    if torque:
+        name, vals = cols["F"]
+        used.append(f"{name} ({units['F']}) as the friction torque")
+        cols["F"], units["F"] = (name, vals * torque_scale(units["F"])), "N"
+    if twist:
+        name, u = twist[0]
+        cols["x"], units["x"] = (name, tab.columns[name] * _ANGLE[_unit_key(u)]), "mm"
+        used.append(f"{name} ({u}) as the torsion spring's twist")
+    drive = [(n, u) for n, u in angles if (n, u) not in twist[:1] and words(n) & _ROTOR_WORDS]
+    if speeds:
+        n, u = speeds[0]
+        cols["v0"], units["v0"] = (n, tab.columns[n] * _ANGULAR_VELOCITY[speed_key(u)]), "mm/s"
+        cols.pop("position", None), units.pop("position", None)
+        used.append(f"{n} ({u}) as the drive's angular speed")
+    elif drive:
+        n, u = drive[0]
+        cols["position"], units["position"] = (n, tab.columns[n] * _ANGLE[_unit_key(u)]), "mm"
+        cols.pop("v0", None), units.pop("v0", None)
+        used.append(f"{n} ({u}) as the drive's angle")
+    first = twist[:1] or drive[:1] or speeds[:1]
+    unit = _unit_key(first[0][1]).replace("°", "deg").split("/")[0] if first else "rad"
+    unit = {"radian": "rad", "radians": "rad", "degree": "deg", "degrees": "deg", "°": "deg",
+            "revolutions": "rev", "turns": "rev"}.get(unit, unit)
+    note = (f"a rotary record: {', '.join(used)}; its angles in mrad (x is the twist), its torques in N·m; "
+            f"a --stiffness is read in N·m/{unit} and a --v0 in {unit}/s (the record's angle unit)")
+    return {"unit": unit, "note": note}
 
 
 def _column_role(name: str, unit: str = ""):
@@ -382,9 +498,11 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         The table.
     v0 : float, optional
         The drive velocity (mm/s) when the record has no drive column; may be
-        negative (a drive in the negative direction).
+        negative (a drive in the negative direction).  A rotary record's in
+        its angle unit per second (rad/s when it has no angle column).
     stiffness : float, optional
-        Tangential stiffness (N/m): needed for a force record.
+        Tangential stiffness (N/m): needed for a force record.  A rotary
+        record's torsional stiffness in N·m per its angle unit.
     rate : float, optional
         Sampling rate (Hz) of a table without a time column (its rows are
         evenly spaced samples); ignored, and said, when there is one.
@@ -405,8 +523,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     _check_highpass(highpass)
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
-                     missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None,
-                     sparse=lambda name, unit: _column_role(name, unit)[0] in ("position", "v0", "y", "N"))
+                     missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None and not _rotational(unit),
+                     sparse=lambda name, unit: _column_role(name, unit)[0] in ("position", "v0", "y", "N")
+                     or _rotational(unit))
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
     cols, units = {}, {}
     for name, role, unit in roles:
@@ -444,8 +563,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         slider_note = (f"column {cols['x'][0]} is the slider's position, not the spring's extension: not read "
                        f"(the friction force {cols['F'][0]} is)")
         cols.pop("x"), units.pop("x")
+    rotary = _rotary(path, roles, tab, cols, units)
     # a rotating drive's angle (a pin-on-disc's): not a linear drive, and its radius is not in the record
-    angle = next((n for (n, role, _), u in zip(roles, tab.units) if role is None and _is_angle(n, u)), None)
+    angle = None if rotary else \
+        next((n for (n, role, _), u in zip(roles, tab.units) if role is None and _is_angle(n, u)), None)
     drive_note = None
     if "x" in cols and "F" in cols and "position" not in cols and "v0" not in cols and _one_way(cols["x"][1]):
         # a displacement beside a force that only goes one way is the stage's travel, not the spring's extension
@@ -517,8 +638,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (pull_note, notes_pair, slider_note, mu_note, drive_note, serial_note, runs_note,
-                         stamps_note) if m]
+    notes = [m for m in (rotary["note"] if rotary else None, pull_note, notes_pair, slider_note, mu_note, drive_note,
+                         serial_note, runs_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
@@ -536,8 +657,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             y, y_force = _force(path, cols, units, "N"), True
     else:
         unknown = stiffness is None
-        if not unknown and not (math.isfinite(stiffness) and 1e-6 <= stiffness <= 1e12):
-            _fail(f"--stiffness {stiffness:g}: the stiffness must be a number from 1e-06 to 1e+12 (N/m)")
+        k_unit = f"N·m/{rotary['unit']}" if rotary else "N/m"
+        if not unknown and not (math.isfinite(stiffness) and 1e-9 <= stiffness <= 1e12):
+            _fail(f"--stiffness {stiffness:g}: the stiffness must be a number from 1e-09 to 1e+12 ({k_unit})")
         if _is_stress(units["F"]):
             if not unknown:
                 _fail(f"{path}: column {cols['F'][0]} is a stress ({units['F']}): --stiffness (N/m) does not apply; "
@@ -545,7 +667,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             notes.append(f"column {cols['F'][0]} is a stress: read as the friction force per area, so the stiffness "
                          f"read from the sticks is per area (Pa/m)")
         F = _force(path, cols, units, "F")
-        x = F / (1.0 if unknown else stiffness) * 1e3
+        # (mm from N over N/m; a rotary record's mrad from N·m over N·m per its angle unit)
+        x = F / (1.0 if unknown else stiffness) * (_ANGLE[rotary["unit"]] if rotary and not unknown else 1e3)
         y, y_force = None, False
         if "N" in cols:
             y, y_force = _force(path, cols, units, "N"), True
@@ -568,7 +691,12 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if v0 is not None and (vcol is not None or pos is not None):
         notes.append("--v0 ignored: the record gives the drive")
     if v0 is not None and vcol is None and pos is None:
+        if rotary:
+            v0 = v0 * _ANGLE[rotary["unit"]] / 1e3        # (the record's angle unit per second, in rad/s: checked
+            #                                                as mm/s would be, then held in mrad/s)
         _check_v0(v0)
+        if rotary:
+            v0 *= 1e3
     rec = _regularise(path, t, {"x": x, "y": y, "v0": vcol, "pos": pos}, notes)
     t, x, y, vcol, pos = rec["t"], rec["x"], rec["y"], rec["v0"], rec["pos"]
     dt = float(t[1] - t[0])
@@ -595,7 +723,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                  stiffness_unknown="F" in cols and "x" not in cols and stiffness is None,
                  stiffness=stiffness if "F" in cols and "x" not in cols else None,
                  stiffness_unit="Pa/m" if "F" in cols and _is_stress(units["F"]) else
-                 "1/m" if mu_note and "N" not in cols else "N/m")
+                 "1/m" if mu_note and "N" not in cols else
+                 (f"N·m/{rotary['unit']}" if stiffness is not None else "N·m/rad") if rotary else "N/m",
+                 length_unit="mrad" if rotary else "mm")
     condition(out)
     if highpass is not None:
         undo_highpass(out, highpass)

@@ -33,6 +33,11 @@ def _f(v, spec: str) -> str:
 NO_EFFECT = ("none", "no_stick_slip", "unexplained")
 
 
+def _lu(d) -> str:
+    """The unit of x (mm; a rotary record's twist in mrad)."""
+    return getattr(d, "length_unit", "mm")
+
+
 def summary_lines(d, source: str) -> list:
     """The terminal summary (also the head of report.md)."""
     gi = d.gain_interval or (None, None)
@@ -42,7 +47,7 @@ def summary_lines(d, source: str) -> list:
     out.append(f"  {d.reason}")
     if d.effect != "no_stick_slip":
         out.append(f"  natural frequency {_f(d.fn, '.4g')} Hz ({d.fn_source}); {d.n_cycles} cycles; drop D = "
-                   f"{_f(d.drop, '.4g')} mm")
+                   f"{_f(d.drop, '.4g')} {_lu(d)}")
     for w in d.warnings:
         out.append(f"  warning: {w}")
     for n in d.notes:
@@ -114,9 +119,9 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
         tr = [v for v in d.sliding["presliding_travel_mm"] if v is not None]
         lines += ["## Steady sliding, stroke by stroke", "",
                   f"* {len(lv)} strokes; sliding level (x over the second half of each stroke): median "
-                  f"{np.median(lv):.4g} mm, spread {np.std(lv):.3g} mm",
+                  f"{np.median(lv):.4g} {_lu(d)}, spread {np.std(lv):.3g} {_lu(d)}",
                   f"* drive travel until x is 90 % of the way to that level after a reversal: median "
-                  f"{np.median(tr):.4g} mm" if tr else "* no presliding ramp measured", ""]
+                  f"{np.median(tr):.4g} {_lu(d)}" if tr else "* no presliding ramp measured", ""]
     sections = (("Named effects and gains", d.effects,
                  [f"Metric: {METRIC}.", "",
                   "The held-out errors are in the metric's units (fractions of the drop D and of the mean period): "
@@ -141,10 +146,10 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
     if d.baseline is not None:
         b = d.baseline
         lines += ["## Baseline (the thesis's 1-DoF model, fitted on the training part)", "",
-                  f"* static limit FS = {b.fs:.5g} mm; relative velocity in stick (ch. 2.3.1.1) c0 = {b.creep0:.3g} "
+                  f"* static limit FS = {b.fs:.5g} {_lu(d)}; relative velocity in stick (ch. 2.3.1.1) c0 = {b.creep0:.3g} "
                   f"of the drive, growing by c1 = {b.creep1:.3g} as (x / FS)^{b.creep_m:g} towards the static limit "
                   f"(creep before slip)",
-                  "* characteristic phi(s) (sliding velocity mm/s: friction/stiffness mm): " +
+                  f"* characteristic phi(s) (sliding velocity {_lu(d)}/s: friction/stiffness {_lu(d)}): " +
                   ", ".join(f"{s:.3g}: {f:.4g}" for s, f in zip(b.sg, b.fg)), ""]
     if plots and d.plot and d.plot.get("pr") is not None:
         _plots(d, out, source)
@@ -175,7 +180,7 @@ def _plots(d, out: Path, source: str) -> None:
     ax.plot(t[c.peak_i], x[c.peak_i], "v", color="C1", ms=4, label="slip starts (peaks)")
     ax.axvline(d.plot["tsplit"], color="0.5", ls="--", lw=0.8)
     ax.set_xlabel("time t (s)")
-    ax.set_ylabel("spring extension x = friction / stiffness (mm)")
+    ax.set_ylabel(f"spring extension x = friction / stiffness ({_lu(d)})")
     ax.set_title("Trace: record and models (dashed: start of the held-out part)")
     finish(fig, ax, cap, out / "trace.png")
 
@@ -185,8 +190,8 @@ def _plots(d, out: Path, source: str) -> None:
     ax.plot(s[br > 0], F[br > 0], ".", ms=2, color="C3", label="decelerating half of the slips")
     if d.baseline is not None:
         ax.plot(d.baseline.sg, d.baseline.fg, "-", color="k", lw=1.5, label="baseline characteristic phi(s)")
-    ax.set_xlabel("sliding velocity s = v0 - x' (mm/s)")
-    ax.set_ylabel("friction / stiffness F = x + x''/wn^2 (mm)")
+    ax.set_xlabel(f"sliding velocity s = v0 - x' ({_lu(d)}/s)")
+    ax.set_ylabel(f"friction / stiffness F = x + x''/wn^2 ({_lu(d)})")
     ax.set_title("Characteristic during slip (reverse construction), both branches")
     finish(fig, ax, cap, out / "characteristic.png")
 
@@ -200,6 +205,6 @@ def _plots(d, out: Path, source: str) -> None:
         ax.plot(t[tr], xb[tr], "x", ms=4, color="C2", label="baseline: trough")
     ax.axvline(d.plot["tsplit"], color="0.5", ls="--", lw=0.8)
     ax.set_xlabel("time t (s)")
-    ax.set_ylabel("x (mm)")
+    ax.set_ylabel(f"x ({_lu(d)})")
     ax.set_title("Cycle by cycle: peaks and troughs, record (o) against the baseline (x)")
     finish(fig, ax, cap, out / "residuals.png")

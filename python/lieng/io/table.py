@@ -483,10 +483,12 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     if first is not None:
         # a row of units alone under the header ("s,N,N"): no cell of it is a number
         cells = [_unquote(c) for c in (first.split(sep) if sep else first.split())][:ncol]
-        unitlike = len(cells) == ncol and all(c and len(c) <= 12 for c in cells)
+        # (a column without a unit may leave its cell empty: a rheometer's "Point No." under "[s]", "[N·m]")
+        unitlike = len(cells) == ncol and all(len(c) <= 12 for c in cells) and \
+            sum(bool(c.strip()) for c in cells) >= max(1, ncol - 2)
         if unitlike:
             try:
-                [_number(c, comma) for c in cells]
+                [_number(c, comma) for c in cells if c.strip()]
             except ValueError:
                 if not any(units):
                     units = [c.strip("[]() ") for c in cells]
