@@ -499,3 +499,16 @@ def test_nm_is_a_nanometre_and_Nm_a_newton_metre(tmp_path):
     q.write_text("t [s],F [N],Angle [deg]\n" + "".join(f"{T[i]},{F[i]},{3 * i}\n" for i in range(200)))
     r = read_record(q, v0=1.0, stiffness=K)
     assert r.length_unit == "mm" and any("angle" in n and "not read" in n for n in r.notes)
+
+
+def test_a_rotary_records_bad_options_name_its_units(tmp_path):
+    """A --v0 or --stiffness out of range on a rotary record is refused in
+    the record's own units (deg/s, N·m/deg), not a linear record's."""
+    p = tmp_path / "twist.csv"
+    p.write_text("Time [s],Torque [N·m],Motor angle [deg]\n" + "".join(f"{T[i]},{F[i]},{2 * T[i]}\n" for i in range(200)))
+    with pytest.raises(LiengInputError, match=r"--stiffness -1: .* \(N·m/deg\)"):
+        read_record(p, stiffness=-1.0)
+    q = tmp_path / "torque.csv"
+    q.write_text("Time [s],Torque [N·m]\n" + _rows(lambda a, b: f"{a},{b}\n"))
+    with pytest.raises(LiengInputError, match=r"--v0 1e\+09: .* rad/s"):
+        read_record(q, v0=1e9, stiffness=1.0)

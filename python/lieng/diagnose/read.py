@@ -163,10 +163,12 @@ def _fail(msg):
 V0_RANGE = (1e-6, 1e6)
 
 
-def _check_v0(v0) -> None:
-    if not (math.isfinite(v0) and V0_RANGE[0] <= abs(v0) <= V0_RANGE[1]):
-        _fail(f"--v0 {v0:g}: the drive velocity must be a number of magnitude {V0_RANGE[0]:g} to "
-              f"{V0_RANGE[1]:g} mm/s")
+def _check_v0(v0, unit: str = "mm/s", to_range: float = 1.0) -> None:
+    """``v0`` (in ``unit``) times ``to_range`` within V0_RANGE (mm/s; a
+    rotary record's rad/s)."""
+    if not (math.isfinite(v0) and V0_RANGE[0] <= abs(v0 * to_range) <= V0_RANGE[1]):
+        _fail(f"--v0 {v0:g}: the drive velocity must be a number of magnitude {V0_RANGE[0] / to_range:g} to "
+              f"{V0_RANGE[1] / to_range:g} {unit}")
 
 
 #: words that give a column its role when its name is none of _NAMES
@@ -234,6 +236,7 @@ def _role(name: str, unit: str = ""):
 #: the units and words of an angle column (a pin-on-disc's or a rotary stage's)
 _ANGLE_UNITS = {"deg", "degree", "degrees", "rad", "radian", "radians", "rev", "revolutions", "turns", "°", "mrad",
                 "µrad", "urad", "arcmin", "arcsec"}
+_ANGLE_WORDS = {"angle", "theta", "rotation", "revolution", "revolutions", "revs", "azimuth"}
 #: a rotary record's angles in its internal unit, the milliradian (as a linear record's lengths are in mm: a
 #: torque over a torsional stiffness in N·m/rad, times 1000, is the twist in mrad as a force over N/m is mm)
 _ANGLE = {"rad": 1e3, "radian": 1e3, "radians": 1e3, "mrad": 1.0, "µrad": 1e-3, "urad": 1e-3,
@@ -262,7 +265,6 @@ def torque_scale(unit: str) -> float | None:
         return pre * {"m": 1.0, "cm": 1e-2, "mm": 1e-3}[m.group("l")]
     key = re.sub(r"[\s*.⋅×\-]", "·", unit.strip().lower()).replace("··", "·")
     return _TORQUE_OTHER.get(key, _TORQUE_OTHER.get(key.replace("·", "")))
-_ANGLE_WORDS = {"angle", "theta", "rotation", "revolution", "revolutions", "revs", "azimuth"}
 
 
 def _is_angle(name: str, unit: str = "") -> bool:
@@ -657,9 +659,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             y, y_force = _force(path, cols, units, "N"), True
     else:
         unknown = stiffness is None
-        k_unit = f"N·m/{rotary['unit']}" if rotary else "N/m"
-        if not unknown and not (math.isfinite(stiffness) and 1e-9 <= stiffness <= 1e12):
-            _fail(f"--stiffness {stiffness:g}: the stiffness must be a number from 1e-09 to 1e+12 ({k_unit})")
+        # (a torsion spring's N·m per angle is small: a fine coupling's 1e-9 N·m/rad is a linear 1e-3 N/m at 1 mm)
+        k_unit, k_lo = (f"N·m/{rotary['unit']}", 1e-9) if rotary else ("N/m", 1e-6)
+        if not unknown and not (math.isfinite(stiffness) and k_lo <= stiffness <= 1e12):
+            _fail(f"--stiffness {stiffness:g}: the stiffness must be a number from {k_lo:g} to 1e+12 ({k_unit})")
         if _is_stress(units["F"]):
             if not unknown:
                 _fail(f"{path}: column {cols['F'][0]} is a stress ({units['F']}): --stiffness (N/m) does not apply; "
@@ -692,11 +695,12 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         notes.append("--v0 ignored: the record gives the drive")
     if v0 is not None and vcol is None and pos is None:
         if rotary:
-            v0 = v0 * _ANGLE[rotary["unit"]] / 1e3        # (the record's angle unit per second, in rad/s: checked
-            #                                                as mm/s would be, then held in mrad/s)
-        _check_v0(v0)
-        if rotary:
-            v0 *= 1e3
+            # (the record's angle unit per second, held in mrad/s; in rad/s within the range a linear drive has
+            # in mm/s)
+            _check_v0(v0, f"{rotary['unit']}/s", _ANGLE[rotary["unit"]] / 1e3)
+            v0 = v0 * _ANGLE[rotary["unit"]]
+        else:
+            _check_v0(v0)
     rec = _regularise(path, t, {"x": x, "y": y, "v0": vcol, "pos": pos}, notes)
     t, x, y, vcol, pos = rec["t"], rec["x"], rec["y"], rec["v0"], rec["pos"]
     dt = float(t[1] - t[0])
