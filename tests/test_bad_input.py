@@ -471,3 +471,21 @@ def test_a_record_written_last_sample_first_is_refused_saying_so(tmp_path, capsy
     q = tmp_path / "appended.csv"
     q.write_text("time [s],x [mm]\n" + "".join(f"{a:.4f},{b:.5f}\n" for a, b in zip(np.r_[t[:300], t], np.r_[x[:300], x])))
     assert read_record(q, v0=2.0).t.size == t.size
+
+
+@pytest.mark.parametrize("opts, needles", [
+    (["--stiffness", "2.5 N/mm", "--v0", "3 rpm"], ("--v0 3 rpm", "linear drive")),
+    (["--stiffness", "2.5 lb", "--v0", "1"], ("--stiffness 2.5 lb", "linear stiffness")),
+    (["--stiffness", "abc", "--v0", "1"], ("--stiffness", "not a number")),
+])
+def test_an_options_unit_of_the_wrong_kind_is_refused_naming_it(tmp_path, capsys, opts, needles):
+    """--stiffness and --v0 may carry their unit ('2.5 N/mm', '6 deg/s');
+    one of the wrong kind for the record (an angular speed for a linear
+    drive), or not a unit at all, is one line naming the option, exit 2,
+    and nothing written."""
+    p = tmp_path / "lin.csv"
+    t = np.arange(400) * 1e-3
+    p.write_text("t [s],F [N]\n" + "".join(f"{a},{0.5 + 0.1 * np.sin(40 * a)}\n" for a in t))
+    code, out, err = run(["diagnose", p, *opts, "-o", tmp_path / "o"], capsys)
+    one_line_error(code, err, *needles)
+    assert not (tmp_path / "o").exists()

@@ -512,3 +512,26 @@ def test_a_rotary_records_bad_options_name_its_units(tmp_path):
     q.write_text("Time [s],Torque [N·m]\n" + _rows(lambda a, b: f"{a},{b}\n"))
     with pytest.raises(LiengInputError, match=r"--v0 1e\+09: .* rad/s"):
         read_record(q, v0=1e9, stiffness=1.0)
+
+
+def test_options_with_their_units_read_as_the_bare_numbers(tmp_path):
+    """--stiffness and --v0 given with a unit ((number, unit), as the CLI
+    passes '2.5 N/mm') read the record as the bare numbers in its own
+    units do: N/m and mm/s for a linear record, N·m per its angle unit and
+    that unit per second for a rotary one (here rad: 0.05 N·m/rad is
+    0.05 pi/180 N·m/deg), each said in a note."""
+    p = tmp_path / "lin.csv"
+    p.write_text(PLAIN)
+    a = read_record(p, v0=0.5, stiffness=K)
+    b = read_record(p, v0=(500.0, "um/s"), stiffness=(K / 1e3, "N/mm"))
+    np.testing.assert_allclose(b.x, a.x, rtol=1e-12)
+    np.testing.assert_allclose(b.vd, a.vd, rtol=1e-12)
+    assert "--stiffness 2 N/mm: 2000 N/m" in b.notes and "--v0 500 um/s: 0.5 mm/s" in b.notes
+    q = tmp_path / "rot.csv"
+    q.write_text("Time [s],Torque [N·m]\n" + _rows(lambda a, b: f"{a},{b}\n"))
+    c = read_record(q, v0=0.5, stiffness=0.05)
+    d = read_record(q, v0=(0.5 * 180 / np.pi, "deg/s"), stiffness=(0.05 * np.pi / 180, "N·m/deg"))
+    np.testing.assert_allclose(d.x, c.x, rtol=1e-12)
+    np.testing.assert_allclose(d.vd, c.vd, rtol=1e-12)
+    with pytest.raises(LiengInputError, match="--v0 1 mm/s: a rotary record's drive is an angular speed"):
+        read_record(q, v0=(1.0, "mm/s"), stiffness=0.05)

@@ -33,6 +33,19 @@ class _Parser(argparse.ArgumentParser):
 _NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
 
 
+
+def _quantity(text: str):
+    """An option's number, or (number, unit) when a unit follows it
+    ("2.5 N/mm", "6deg/s"): argparse's one-line error otherwise."""
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    m = re.match(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d\s].*?)\s*$", text)
+    if not m:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number, nor a number and its unit")
+    return float(m.group(1)), m.group(2)
+
 def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
     """``--v0 -1:2:3`` as ``--v0=-1:2:3``: argparse takes a value that starts
     with a minus sign for an option unless it is a plain number."""
@@ -143,9 +156,10 @@ def build_parser() -> argparse.ArgumentParser:
                     "'time/s', 'Time (s)', or a row of units; comma, semicolon, TAB or whitespace, a decimal comma, "
                     "'#' comments; rows with a missing value left out), a LabVIEW .lvm file, a spreadsheet .xlsx (its first "
                     "sheet, read as such a table), a MATLAB .mat (v4-v7) or NumPy .npz file of vectors named so, or a TRC deck")
-    dg.add_argument("--v0", type=float, metavar="MM_S",
+    dg.add_argument("--v0", type=_quantity, metavar="MM_S",
                     help="drive velocity (mm/s) when the record has no v0/position column (a rotary record's: "
-                         "its angle unit per second, rad/s when it has no angle column)")
+                         "its angle unit per second, rad/s when it has no angle column); or with its unit, "
+                         "'0.5 um/s', '6 deg/s', '2 rpm'")
     dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "
                     "estimated from the slips when not given (a TRC deck gives it: OMNH)")
     dg.add_argument("--fn-uncertainty", type=float, metavar="REL",
@@ -153,9 +167,9 @@ def build_parser() -> argparse.ArgumentParser:
                          "least favourable fn within it: an fn measured to 0.01 lets smaller twin branches through")
     dg.add_argument("--rate", type=float, metavar="HZ", help="sampling rate (Hz) of a record without a time "
                     "column (its rows are then evenly spaced samples)")
-    dg.add_argument("--stiffness", type=float, metavar="N_M", help="tangential stiffness (N/m) of a force "
-                    "record (a torque record's: N·m per its angle unit, per rad when it has no angle column); "
-                    "estimated from the sticks when not given")
+    dg.add_argument("--stiffness", type=_quantity, metavar="N_M", help="tangential stiffness (N/m) of a force "
+                    "record (a torque record's: N·m per its angle unit, per rad when it has no angle column), or "
+                    "with its unit, '2.5 N/mm', '0.05 N·m/rad'; estimated from the sticks when not given")
     dg.add_argument("--highpass", type=float, metavar="TAU_S", help="the friction channel was recorded AC-coupled "
                     "(a piezoelectric force cell's charge amplifier): the time constant (s) of its high-pass, "
                     "undone before the diagnosis (a steady force otherwise sinks towards zero, read as a drifting "

@@ -308,6 +308,48 @@ _ROTOR_WORDS = _STAGE_WORDS | {"input", "rotor", "spindle", "shaft", "angle", "p
                                "velocity", "omega"}
 
 
+#: stiffnesses (N/m)
+_STIFFNESS = {"n/m": 1.0, "n/mm": 1e3, "kn/m": 1e3, "kn/mm": 1e6, "n/um": 1e6, "n/µm": 1e6, "mn/mm": 1.0,
+              "mn/m": 1e-3, "n/cm": 1e2, "lbf/in": 175.1268352}
+
+
+def _with_units(stiffness, v0, rotary, notes):
+    """--stiffness and --v0 given with their units ((number, unit)) as the
+    bare numbers the record's kind takes (N/m and mm/s; a rotary record's
+    N·m and its angle unit per second), each said in ``notes``; a unit of
+    the other kind (an angular speed for a linear record) refused, naming
+    the option."""
+    ru = rotary["unit"] if rotary else None
+    if isinstance(stiffness, tuple):
+        val, unit = stiffness
+        num, _, den = unit.rpartition("/")
+        k = _STIFFNESS.get(_unit_key(unit)) if not rotary else None
+        if rotary and torque_scale(num) is not None and _unit_key(den) in _ANGLE:
+            k = torque_scale(num) * _ANGLE[ru] / _ANGLE[_unit_key(den)]
+        if k is None:
+            _fail(f"--stiffness {val:g} {unit}: " + (f"a rotary record's stiffness is a torque per angle (N·m/rad, "
+                                                       f"mN·m/deg)" if rotary else
+                                                       f"unit not understood for a linear stiffness (N/m, N/mm, "
+                                                       f"kN/m, N/um, lbf/in)"))
+        notes.append(f"--stiffness {val:g} {unit}: {val * k:.6g} " + (f"N·m/{ru}" if rotary else "N/m"))
+        stiffness = val * k
+    if isinstance(v0, tuple):
+        val, unit = v0
+        key = _unit_key(unit)
+        key = key if key in _ANGULAR_VELOCITY else key.replace("°", "deg")
+        if rotary and key in _ANGULAR_VELOCITY:
+            f = _ANGULAR_VELOCITY[key] / _ANGLE[ru]
+        elif not rotary and _unit_key(unit) in _VELOCITY:
+            f = _VELOCITY[_unit_key(unit)]
+        else:
+            _fail(f"--v0 {val:g} {unit}: " + ("a rotary record's drive is an angular speed (rad/s, deg/s, rpm)"
+                                               if rotary else "unit not understood for a linear drive (mm/s, um/s, "
+                                                              "m/s, mm/min)"))
+        notes.append(f"--v0 {val:g} {unit}: {val * f:.6g} " + (f"{ru}/s" if rotary else "mm/s"))
+        v0 = val * f
+    return stiffness, v0
+
+
 def _rotational(unit: str) -> bool:
     """Whether ``unit`` is an angle's or an angular speed's (a rotary record's column)."""
     k = _unit_key(unit)
@@ -498,13 +540,15 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     ----------
     path : str or path-like
         The table.
-    v0 : float, optional
+    v0 : float or (float, str), optional
         The drive velocity (mm/s) when the record has no drive column; may be
         negative (a drive in the negative direction).  A rotary record's in
-        its angle unit per second (rad/s when it has no angle column).
-    stiffness : float, optional
+        its angle unit per second (rad/s when it has no angle column).  Or
+        a number and its unit, ``(0.5, "um/s")``, ``(6.0, "deg/s")``.
+    stiffness : float or (float, str), optional
         Tangential stiffness (N/m): needed for a force record.  A rotary
-        record's torsional stiffness in N·m per its angle unit.
+        record's torsional stiffness in N·m per its angle unit.  Or a
+        number and its unit, ``(2.5, "N/mm")``, ``(0.05, "N·m/rad")``.
     rate : float, optional
         Sampling rate (Hz) of a table without a time column (its rows are
         evenly spaced samples); ignored, and said, when there is one.
@@ -566,6 +610,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                        f"(the friction force {cols['F'][0]} is)")
         cols.pop("x"), units.pop("x")
     rotary = _rotary(path, roles, tab, cols, units)
+    given = []
+    stiffness, v0 = _with_units(stiffness, v0, rotary, given)
     # a rotating drive's angle (a pin-on-disc's): not a linear drive, and its radius is not in the record
     angle = None if rotary else \
         next((n for (n, role, _), u in zip(roles, tab.units) if role is None and _is_angle(n, u)), None)
@@ -640,7 +686,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (rotary["note"] if rotary else None, pull_note, notes_pair, slider_note, mu_note, drive_note,
+    notes = [m for m in (rotary["note"] if rotary else None, *given, pull_note, notes_pair, slider_note, mu_note, drive_note,
                          serial_note, runs_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
@@ -1246,6 +1292,7 @@ def record_from_trc_deck(path, v0: float | None) -> tuple[Record, float]:
         _fail(f"{path}: the readings' times do not increase (NT): cannot be resampled")
     if v0 is None:
         _fail(f"{path}: a TRC deck does not give the drive velocity: --v0 is needed")
+    v0 = _with_units(None, v0, None, [])[1]
     _check_v0(v0)
     notes = []
     y = xn if np.any(xn != 0) else None
