@@ -33,7 +33,6 @@ class _Parser(argparse.ArgumentParser):
 _NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
 
 
-
 def _quantity(text: str):
     """An option's number, or (number, unit) when a unit follows it
     ("2.5 N/mm", "6deg/s"): argparse's one-line error otherwise."""
@@ -45,6 +44,7 @@ def _quantity(text: str):
     if not m:
         raise argparse.ArgumentTypeError(f"{text!r} is not a number, nor a number and its unit")
     return float(m.group(1)), m.group(2)
+
 
 def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
     """``--v0 -1:2:3`` as ``--v0=-1:2:3``: argparse takes a value that starts
