@@ -193,6 +193,12 @@ _FITS = (("position", _LENGTH), ("x", _LENGTH), ("y", _LENGTH), ("v0", _VELOCITY
          ("N", _FORCE), ("F", _STRESS), ("N", _STRESS))
 
 
+def _words(name: str) -> set:
+    """A column name's words, lower case, with their accents taken off ("Déplacement", "Force normale")."""
+    return set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", name.strip().lower())
+                        .encode("ascii", "ignore").decode()))
+
+
 def _role(name: str, unit: str = ""):
     """The column's role from its name; a unit that is a length, velocity,
     time or force rules out the roles of another dimension ("Load point
@@ -206,8 +212,7 @@ def _role(name: str, unit: str = ""):
         fits = {"F"}                     # a torque ("Nm" is not a nanometre): the friction of a rotary rig
     if fits is not None and not fits:
         fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
-    # (the words with their accents taken off: "Déplacement", "Force normale")
-    words = set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", key).encode("ascii", "ignore").decode()))
+    words = _words(key)
     if "load" in words and words & {"friction", "tangential", "lateral", "shear", "traction"}:
         words = words - {"load"}             # "Tangential load", "Friction load": the friction force
     if {"load", "cell"} <= words:
@@ -234,8 +239,6 @@ def _role(name: str, unit: str = ""):
 
 
 #: the units and words of an angle column (a pin-on-disc's or a rotary stage's)
-_ANGLE_UNITS = {"deg", "degree", "degrees", "rad", "radian", "radians", "rev", "revolutions", "turns", "°", "mrad",
-                "µrad", "urad", "arcmin", "arcsec"}
 _ANGLE_WORDS = {"angle", "theta", "rotation", "revolution", "revolutions", "revs", "azimuth"}
 #: a rotary record's angles in its internal unit, the milliradian (as a linear record's lengths are in mm: a
 #: torque over a torsional stiffness in N·m/rad, times 1000, is the twist in mrad as a force over N/m is mm)
@@ -243,6 +246,7 @@ _ANGLE = {"rad": 1e3, "radian": 1e3, "radians": 1e3, "mrad": 1.0, "µrad": 1e-3,
           "deg": math.pi / 0.18, "degree": math.pi / 0.18, "degrees": math.pi / 0.18, "°": math.pi / 0.18,
           "arcmin": math.pi / 10.8, "arcsec": math.pi / 648.0, "rev": 2e3 * math.pi, "revolutions": 2e3 * math.pi,
           "turns": 2e3 * math.pi}
+_ANGLE_UNITS = frozenset(_ANGLE)
 #: angular velocities (mrad/s)
 _ANGULAR_VELOCITY = {"rad/s": 1e3, "mrad/s": 1.0, "deg/s": math.pi / 0.18, "°/s": math.pi / 0.18,
                      "rpm": 2e3 * math.pi / 60, "1/min": 2e3 * math.pi / 60, "min-1": 2e3 * math.pi / 60,
@@ -335,8 +339,7 @@ def _with_units(stiffness, v0, rotary, notes):
         stiffness = val * k
     if isinstance(v0, tuple):
         val, unit = v0
-        key = _unit_key(unit)
-        key = key if key in _ANGULAR_VELOCITY else key.replace("°", "deg")
+        key = _speed_key(unit)
         if rotary and key in _ANGULAR_VELOCITY:
             f = _ANGULAR_VELOCITY[key] / _ANGLE[ru]
         elif not rotary and _unit_key(unit) in _VELOCITY:
@@ -350,10 +353,15 @@ def _with_units(stiffness, v0, rotary, notes):
     return stiffness, v0
 
 
+def _speed_key(unit: str) -> str:
+    """An angular speed's unit as :data:`_ANGULAR_VELOCITY` spells it (a degree sign as deg: "°/min")."""
+    k = _unit_key(unit)
+    return k if k in _ANGULAR_VELOCITY else k.replace("°", "deg")
+
+
 def _rotational(unit: str) -> bool:
     """Whether ``unit`` is an angle's or an angular speed's (a rotary record's column)."""
-    k = _unit_key(unit)
-    return k in _ANGLE or k in _ANGULAR_VELOCITY or k.replace("°", "deg") in _ANGULAR_VELOCITY
+    return _unit_key(unit) in _ANGLE or _speed_key(unit) in _ANGULAR_VELOCITY
 
 
 def _rotary(path, roles, tab, cols, units):
@@ -369,23 +377,15 @@ def _rotary(path, roles, tab, cols, units):
     velocity.  The record's angle unit (the twist's, else the drive's, else
     rad) is the one a bare --stiffness (N·m per it) and --v0 (it per
     second) are read in."""
-    def words(n):
-        return set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", n.strip().lower())
-                            .encode("ascii", "ignore").decode()))
-
-    def speed_key(u):
-        k = _unit_key(u)
-        return k if k in _ANGULAR_VELOCITY else k.replace("°", "deg")
-
     angles, speeds = [], []
     for (n, role, u), u0 in zip(roles, tab.units):
         u = u or u0
         if _unit_key(u) in _ANGLE:
             angles.append((n, u))
-        elif speed_key(u) in _ANGULAR_VELOCITY:
+        elif _speed_key(u) in _ANGULAR_VELOCITY:
             speeds.append((n, u))
     torque = "F" in cols and torque_scale(units["F"]) is not None
-    twist = [(n, u) for n, u in angles if words(n) & _TWIST_WORDS and not words(n) & (_STAGE_WORDS | {"input"})]
+    twist = [(n, u) for n, u in angles if _words(n) & _TWIST_WORDS and not _words(n) & (_STAGE_WORDS | {"input"})]
     if not torque and not ("x" not in cols and "F" not in cols and twist):
         return None
     used = []
@@ -397,10 +397,10 @@ def _rotary(path, roles, tab, cols, units):
         name, u = twist[0]
         cols["x"], units["x"] = (name, tab.columns[name] * _ANGLE[_unit_key(u)]), "mm"
         used.append(f"{name} ({u}) as the torsion spring's twist")
-    drive = [(n, u) for n, u in angles if (n, u) not in twist[:1] and words(n) & _ROTOR_WORDS]
+    drive = [(n, u) for n, u in angles if (n, u) not in twist[:1] and _words(n) & _ROTOR_WORDS]
     if speeds:
         n, u = speeds[0]
-        cols["v0"], units["v0"] = (n, tab.columns[n] * _ANGULAR_VELOCITY[speed_key(u)]), "mm/s"
+        cols["v0"], units["v0"] = (n, tab.columns[n] * _ANGULAR_VELOCITY[_speed_key(u)]), "mm/s"
         cols.pop("position", None), units.pop("position", None)
         used.append(f"{n} ({u}) as the drive's angular speed")
     elif drive:
