@@ -2034,6 +2034,32 @@ def test_a_mains_frequency_that_is_a_harmonic_of_the_record_is_its_own():
     assert len(lines) == 1 and abs(lines[0][2][0] - 60.0) < 0.05
 
 
+def test_a_stick_slip_at_a_mains_frequency_is_kept_and_the_hum_beside_it_fitted_clean():
+    """A short record (0.45 s: a bin of 2.2 Hz) stick-slipping at 50.7 Hz,
+    within half a bin of 50 Hz, with 60 Hz hum of 3 % of the drop: the
+    50.7 Hz line is the stick-slip's fundamental (most of the record's
+    variance, and the amplitude a sawtooth rising at the drive's speed has at
+    that frequency, vd / (pi f)), so it is kept; the hum, 4.4 bins from it, is
+    removed at 60 Hz with its amplitude (an unweighted fit took 60.41 Hz,
+    pulled by the fundamental's leakage, and left a beat in every stick)."""
+    from lieng.diagnose import record_from_arrays
+    from lieng.diagnose.read import _hum_lines
+
+    dt = 1.0 / 10200.0
+    t = np.arange(0.0, 0.4536, dt)
+    f0, vd = 50.72, 0.18                       # mm/s
+    drop = vd / f0                              # a sawtooth rising at vd all period long
+    saw = drop * ((t * f0) % 1.0)
+    hum = 0.03 * drop * np.sin(2 * np.pi * 60.0 * t + 1.1)
+    assert _hum_lines(saw - saw.mean(), dt, vd) == []
+    rec = record_from_arrays(t, saw + hum, v0=vd)
+    removed = [n for n in rec.notes if "mains hum" in n]
+    assert len(removed) == 1 and abs(float(removed[0].split()[3]) - 60.0) < 0.1, rec.notes
+    resid = rec.x - saw
+    resid -= resid.mean()
+    assert 2 * abs(np.mean(resid * np.exp(-2j * np.pi * 60.0 * t))) < 0.1 * 0.03 * drop
+
+
 def test_a_line_near_the_other_mains_family_is_the_records_own():
     """A grid runs at 50 Hz or at 60 Hz, never both: on a record with 60 Hz
     hum (and its third harmonic), a mode of the rig ringing in the normal
