@@ -56,11 +56,11 @@ import math
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.baseline import (Params, characteristic, identify, level_to_trough, locked_load, model_drive,
-                                     model_y, pr_like, run_slice, simulate, slip_friction)
+from lieng.diagnose.baseline import (Params, characteristic, identify, level_to_trough, locked_load, model_y,
+                                     pr_like, run_slice, simulate, slip_friction, stick_start)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times, trig_modulation
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
-from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, stick_part, travel
+from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
 
 __all__ = ["TRAIN", "METRIC", "split", "folds", "window", "Judge", "candidates", "gain_folds", "unconfirmed"]
 
@@ -178,60 +178,6 @@ def _slip(t, x, i0: int, i1: int, tau):
     if tt[0] < t[0] or tt[-1] > t[-1]:
         return h[0], None
     return h[0], np.interp(tt, t, x) - h[1]
-
-
-#: the part of a stick its start is read on (:func:`stick_start`): past a rebound after the arrest, before a
-#: creeping top
-START_PART = (0.3, 0.6)
-
-
-def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> float:
-    """The record's state at the start of stick ``k`` (trough ``k`` to peak
-    ``k + 1``): the stick line's level at the trough, x read against the
-    drive's travel over the stick's early middle (:data:`START_PART`).  A
-    rig that rings or rebounds after the arrest (a second mode, a contact
-    lag) puts its trough below the level the stick then rises from; the
-    1-DoF slider arrests at that level.  (Not read further into the stick:
-    a stick that creeps before its slip, its top rounded, would lean the
-    line and raise its level above the trough it rose from.)  The travel is that of the drive the model ``p`` runs on
-    (:func:`.baseline.model_drive`: a modulated drive's own, so that a model
-    of the modulation reads the stick on its own drive); the record's drive
-    when ``p`` is None.  The trough itself when the stick is too short for a
-    line (fewer than 8 samples), when the record's drive holds or steps by
-    more than a factor 2 within it (its 10th percentile there below half
-    its 90th: x may relax in a hold) or when its line does not rise with
-    the drive.  A model ``p`` whose stick creeps towards the limit (ch.
-    2.3.1.1's c1 r**m) reads its line in its own stick law: x through
-    G(x) = integral of dx / (1 - c0 - c1 (x / peak)**m) against the travel,
-    the level G's inverse of the line's (a straight line when c1 is 0: the
-    same level)."""
-    a, b = int(c.trough_i[k]), int(c.peak_i[k + 1])
-    seg = stick_part(c, k, START_PART)
-    x0 = float(pr.x[a])
-    if seg.size < 8:
-        return x0
-    lo_v, hi_v = np.percentile(pr.vd[a:b + 1], [10, 90])
-    if not lo_v > 0.5 * hi_v:
-        return x0     # a hold or a step within the stick: x may relax there, the line is not the state
-    vd = pr.vd[a:seg[-1] + 1] if p is None else model_drive(pr, p, slice(a, int(seg[-1]) + 1))
-    X = travel(vd, pr.dt)[seg - a]
-    if not np.ptp(X) > 0:
-        return x0
-    top = float(pr.x[b])
-    if p is not None and p.creep1 > 0 and top > 0:
-        # the stick read in the model's own law: G(x) rises as the travel does
-        lo_x = min(float(np.min(pr.x[a:b + 1])), 0.0)
-        xg = np.linspace(lo_x, top, 801)
-        ig = 1.0 / np.maximum(1.0 - p.creep0 - p.creep1 * np.clip(xg / top, 0.0, 1.0) ** p.creep_m, 1e-3)
-        g = travel(ig, np.diff(xg))          # (the cumulative trapezoid of 1 / the stick law over x)
-        slope, gl = np.polyfit(X, np.interp(pr.x[seg], xg, g), 1)
-        level = float(np.interp(gl, g, xg))
-    else:
-        slope, level = np.polyfit(X, pr.x[seg], 1)
-    # a stick line that rises with the drive, its level between the trough and the peak
-    if not (slope > 0 and x0 - 0.5 * (top - x0) <= level <= top):
-        return x0
-    return float(level)
 
 
 def _msq(a) -> float:
