@@ -535,3 +535,23 @@ def test_options_with_their_units_read_as_the_bare_numbers(tmp_path):
     np.testing.assert_allclose(d.vd, c.vd, rtol=1e-12)
     with pytest.raises(LiengInputError, match="--v0 1 mm/s: a rotary record's drive is an angular speed"):
         read_record(q, v0=(1.0, "mm/s"), stiffness=0.05)
+
+
+def test_a_seals_squeeze_is_the_normal_reading_and_a_column_not_read_is_said(tmp_path):
+    """A seal rig's "squeeze [mm]" (the lip's compression, an affine reading
+    of its radial load) is the normal reading y, as "Normal deflection [mm]"
+    is; a squeeze film's thickness is the lubricant's, not a load, and a
+    column no role is read from (a temperature, a comment) is named in a
+    note, not dropped in silence (pneumatic_seal's squeeze was)."""
+    y = 0.3 + 0.01 * np.sin(T)
+    p = tmp_path / "seal.csv"
+    p.write_text("t [s];x [mm];squeeze [mm];oil temperature [degC]\n"
+                 + "".join(f"{T[i]};{F[i]};{y[i]};{40 + i / 100}\n" for i in range(200)))
+    r = read_record(p, v0=1.0)
+    np.testing.assert_allclose(r.y, y, rtol=1e-9)
+    assert any(n.startswith("not read: column oil temperature") for n in r.notes)
+    q = tmp_path / "film.csv"
+    q.write_text("t [s],x [mm],squeeze film thickness [um]\n"
+                 + "".join(f"{T[i]},{F[i]},{1 + y[i]}\n" for i in range(200)))
+    r = read_record(q, v0=1.0)
+    assert r.y is None and any("not read" in n and "squeeze film thickness" in n for n in r.notes)

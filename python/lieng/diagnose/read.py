@@ -175,7 +175,8 @@ def _check_v0(v0, unit: str = "mm/s", to_range: float = 1.0) -> None:
 #: ("Tangential force", "Normal load", "Stage position", "Clamp force", "Torque arm force", "F_arm"), first
 #: match wins (a normal word before a force's: "clamp_force" is the normal force)
 _WORDS = (("mu", ("coefficient", "cof", "coeff", "coeficiente", "coefficiente", "reibwert", "reibungskoeffizient")),
-          ("N", ("normal", "load", "normale", "clamp", "clamping", "carico", "carga", "normalkraft", "auflast")),
+          ("N", ("normal", "load", "normale", "clamp", "clamping", "carico", "carga", "normalkraft", "auflast",
+                 "squeeze", "preload")),
           ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement", "torque",
                  "moment", "drehmoment", "couple", "par",
                  "drag", "f", "force", "friccion", "rozamiento", "attrito", "atrito", "tangenziale", "reibung",
@@ -217,6 +218,8 @@ def _role(name: str, unit: str = ""):
         words = words - {"load"}             # "Tangential load", "Friction load": the friction force
     if {"load", "cell"} <= words:
         words = (words - {"load"}) | {"force"}    # a load cell is a force transducer: which force, the other words say
+    if "squeeze" in words and words & {"film", "thickness", "gap", "h"}:
+        words = words - {"squeeze"}          # a squeeze film's thickness is the lubricant's, not a load
     if {"load", "point"} <= words or "lp" in words:
         words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
     named = [role for role, alts in _NAMES.items() if key in alts] + \
@@ -768,6 +771,13 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if pair is not None or slider:
         # an extension from two positions: its zero is where their origins put it
         x, zero_unknown = _zero_between_directions(x, vd, notes)
+    # a column the record carries but nothing reads (its name gives no role, or another column took it) is
+    # said: a seal rig's "squeeze [mm]" was dropped in silence before the word was known
+    used = {c[0] for c in cols.values()}
+    unread = [n for n, _, _ in roles if n not in used and not any(n in note for note in notes) and n.strip()]
+    if unread:
+        notes.append(f"not read: column{'s' if len(unread) > 1 else ''} {', '.join(unread)} (no role from "
+                     f"{'their names' if len(unread) > 1 else 'its name'}, or another column's)")
     out = Record(t=t, x=x, vd=vd, y=y, y_is_force=y_force, drive_recorded=recorded, source=str(path), notes=notes,
                  zero_unknown=zero_unknown,
                  stiffness_unknown="F" in cols and "x" not in cols and stiffness is None,
