@@ -295,7 +295,7 @@ def stick_start(pr: Prepared, c: Cycles, k: int, p: Params | None = None) -> flo
     1-DoF slider arrests at that level.  (Not read further into the stick:
     a stick that creeps before its slip, its top rounded, would lean the
     line and raise its level above the trough it rose from.)  The travel is that of the drive the model ``p`` runs on
-    (:func:`.baseline.model_drive`: a modulated drive's own, so that a model
+    (:func:`model_drive`: a modulated drive's own, so that a model
     of the modulation reads the stick on its own drive); the record's drive
     when ``p`` is None.  The trough itself when the stick is too short for a
     line (fewer than 8 samples), when the record's drive holds or steps by
