@@ -1223,10 +1223,11 @@ def _hum_lines(x, dt, rate=None):
     fund = False
     kt = 2 + int(np.argmax(S[2:])) if S.size > 4 else 0
     amp = 4.0 * float(S[kt]) / n if kt else 0.0          # the window's coherent gain is 1/2: a first estimate
-    if rate and kt > max(k1, 2) and kt < S.size - 1 and amp ** 2 > 0.5 * float(np.mean(s * s)) \
+    ms = float(np.mean(s * s))                            # the record's variance (s is x less its mean)
+    if rate and kt > max(k1, 2) and kt < S.size - 1 and amp ** 2 > 0.5 * ms \
             and 0.2 <= amp * math.pi * kt / T / rate <= 5.0:
         top = fit(kt)
-        if top is not None and top[1] ** 2 / 2.0 > 0.5 * float(np.mean(s * s)) \
+        if top is not None and top[1] ** 2 / 2.0 > 0.5 * ms \
                 and 0.25 <= top[1] * math.pi * top[0] / rate <= 4.0:
             f1, a1, fund = top[0], float(S[kt]), True
     for base in (50.0, 60.0):
