@@ -1036,7 +1036,10 @@ def _regularise(path, t, chans, notes) -> dict:
     if span / dt > MAX_SAMPLES:
         _fail(f"{path}: column t: {span:g} s at {dt:g} s would be {span / dt:.3g} samples, more than "
               f"{MAX_SAMPLES}")
-    out = {"t": t, **chans}
+    # even within 1 %: the grid of the record's mean interval (times written to few digits round the intervals
+    # apart, 0.00172 and 0.00173 s, and any one of them is off the record's clock by up to a rounding step:
+    # mains hum fitted on one interval's grid and removed on the written times parts from it over the record)
+    out = {"t": t[0] + (span / (t.size - 1)) * np.arange(t.size), **chans}
     if np.max(d) > 1.01 * dt or np.min(d) < 0.99 * dt:
         # spikes out first, on the samples as read: interpolated onto the grid, a spike between two grid
         # points becomes two raised samples, no longer isolated
