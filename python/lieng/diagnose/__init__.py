@@ -28,7 +28,8 @@ from lieng.diagnose.evidence import (CANDIDATES, MARGIN, ONE_SIDED, SLIDING, fn_
                                      statistics)
 from lieng.diagnose.goodness import RIG, mean_above_zero, onset_ringing, rig_mode
 from lieng.diagnose.signals import lowpass, y_on_motion
-from lieng.diagnose.extend import METRIC, Judge, candidates, folds, gain_folds, refine, subset, unconfirmed, window
+from lieng.diagnose.extend import (METRIC, Judge, candidates, folds, gain_folds, level_trend, refine, subset,
+                                   unconfirmed, window)
 from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
 from lieng.diagnose.segment import (REVERSING_SHARE, Prepared, crop, drive_from_force, estimate_fn, find_cycles,
                                     force_sides, head, prepare, reversal_ramp, slip_seconds, stick_ratios,
@@ -611,27 +612,35 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     base = fold_models[0][0]
     effects = []
     fitted = {}
+    trended = {}
     for k in named:
         # the extension starts from the effect's size over the baseline's replicates (the statistic less
         # what the baseline itself gives), not from the raw statistic
         stk = {**st, k: rows[k]["effect_size"], k + "_raw": st[k]}
         fits, first, formed = [], None, []
-        for (b, train, win, trough), part in zip(fold_models, parts):
+        for j, ((b, train, win, trough), part) in enumerate(zip(fold_models, parts)):
+            # judged against the baseline with the training part's drift in its level, when it has one (a
+            # sensor's drift is no effect's; a drift of the friction is its own candidate's extension)
+            if k != "friction_drift":
+                if j not in trended:
+                    trended[j] = level_trend(b, pr, c, win)
+                b = trended[j]
             res = _extend(k, b, train, pr, c, fn_used, stk, aux_ext, win, trough)
             fits.append((part[2], part[3], b, res[0]))
             formed.append(bool(res[3]))
-            first = first or res
+            first = first or (*res, b)
         # a fold whose training part cannot form the extension at all (too few sticks to read an ageing
         # law on) holds nothing out for it: the gain is judged on the folds that formed one (an extension
         # formed but no better than the baseline on its training part stays in, as the baseline itself)
         if any(formed) and not all(formed):
             fits = [f for f, ok in zip(fits, formed) if ok]
         # the first fold's extension is the one reported (fitted on the record's first 70 %)
-        ext, e_tr, e_train0, cands = first
+        ext, e_tr, e_train0, cands, b0 = first
         g = gain_folds(pr, c, fn_used, fits, aux_ext["ylow"])
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0
         r = rows[k]
+        ext = base if ext is b0 else ext
         fitted[k] = (ext, g, imp, bool(cands))
         effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
                                 "p": r["p"], "z": r["z"], "gain": g["gain"], "gain_interval_90": g["interval"],
@@ -640,6 +649,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                                 "gain_explainable_interval_90": g["interval_explainable"],
                                 "held_out_scatter_share": g["scatter_share"],
                                 "training_improvement": imp,
+                                "baseline_offset_trend_per_s": b0.offset,
                                 "extension": "fitted" if ext is not base else
                                 ("none better than the baseline on the training part" if cands else
                                  "none available")}))

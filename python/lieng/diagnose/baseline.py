@@ -89,6 +89,8 @@ class Params:
     trig_ay: float = 0.0           # and on the normal channel: ay sin(2 pi f t + phy)
     trig_phy: float = 0.0
     y_c: tuple = (0.0, 0.0, 0.0)   # y = c0 + c1 x + c2 x' (the part of y locked to the motion)
+    offset: float = 0.0            # x recorded with an offset drifting in time: + sign offset (t - offset_t0)
+    offset_t0: float = 0.0         # (mm/s; sign the stroke's direction, x being turned forward stroke by stroke)
     rig_f: float = 0.0             # x recorded through a resonance of the rig or its sensor (Hz; 0: none;
     rig_zeta: float = 0.0          # the replicates' only) and its damping ratio
 
@@ -199,12 +201,18 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
         load = load * (1.0 + p.level_a * np.sin(2 * math.pi * p.level_f * pr.pos[sl] + p.level_ph))
     load = np.maximum(load, 0.05)
     dg = np.zeros_like(sg) if p.dg is None else np.ascontiguousarray(p.dg, float)
+    off = 0.0
+    if p.offset:
+        sgn = next((s.sign for s in pr.strokes if s.j0 <= sl.start < s.j0 + s.n), 1)
+        off = sgn * p.offset * (t - p.offset_t0)
+        start = float(start) - float(off[0])
     x, v, state, status = _core.core_slider(dt, nsub, vdd, load, wn, p.zeta, p.fs, sg, fg, p.delta, dg,
                                             p.age_a, max(p.age_tau, 1e-3 * dt), p.age_r, max(p.age_v, 1e-12),
                                             p.load_kx, p.load_xref, p.creep0, p.creep1, p.creep_m,
                                             float(start), max(float(t_stick), 0.0))
     if status != st.OK:
         raise LiengInputError(f"the slider simulation failed ({st.name(status)}): check --fn and the record's units")
+    x = x + off
     if p.trig_ax:
         x = x + p.trig_ax * _sin(t, p.trig_f, p.trig_phx)
     if p.rig_f > 0:

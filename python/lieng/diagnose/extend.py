@@ -62,7 +62,8 @@ from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times, t
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
 from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
 
-__all__ = ["TRAIN", "METRIC", "split", "folds", "window", "Judge", "candidates", "gain_folds", "unconfirmed"]
+__all__ = ["TRAIN", "METRIC", "split", "folds", "window", "Judge", "candidates", "gain_folds", "unconfirmed",
+           "level_trend"]
 
 TRAIN = 0.7
 METRIC = ("RMS of normalised differences on the held-out cycles (the record's last 30 % with models fitted on its "
@@ -375,6 +376,49 @@ def _fit_level(pr, p: Params, fn, target, tr_mask, ylow=None, it=5):
         return float(np.mean(xs[cc.trough_i][m])) if np.any(m) else None
 
     return level_to_trough(p, trough_of, target, it, 0.25 * D)
+
+
+#: a trend in the training part's friction level is carried by the baseline its gains are judged against
+#: when its slope is beyond this many standard errors (:func:`level_trend`)
+TREND_Z = 2.0
+
+
+def level_trend(base: Params, pr: Prepared, c: Cycles, train: tuple) -> Params:
+    """The baseline ``base`` read through an offset of x that drifts
+    linearly in time (``offset``), fitted to the friction level of the
+    training part ``train`` (:func:`window`): the mean of peak and trough,
+    cycle by cycle, against time (turned with each stroke's direction, as x
+    is; a level for each direction), when the slope lies beyond TREND_Z
+    standard errors (the cycles' scatter about the line); ``base`` itself
+    otherwise.  The offset is zero at the training cycles' mean time, so
+    the baseline's level there is kept.
+
+    A level that drifts over the record (a sensor's offset with temperature,
+    a friction that runs in) shifts every held-out cycle's peak and trough
+    alike, and the stick times with them, for the baseline and any extension
+    of it: an error none of the other effects' terms removes, which would
+    dilute each one's gain.  Their gains are judged against this baseline
+    (``friction_drift``'s against the plain one: the trend is its own
+    extension).  Only the gains: the calibrated evidence is the plain
+    baseline's."""
+    sel = window(pr.t[c.peak_i], train)
+    if np.count_nonzero(sel) < 6:
+        return base
+    tt = pr.t[c.peak_i[sel]]
+    lv = 0.5 * (pr.x[c.peak_i[sel]] + pr.x[c.trough_i[sel]])
+    sign = np.array([pr.strokes[int(k)].sign for k in c.stroke[sel]], float)
+    t0 = float(np.mean(tt))
+    cols = [np.ones(tt.size)] + ([sign] if np.unique(sign).size > 1 else []) + [sign * (tt - t0)]
+    X = np.column_stack(cols)
+    if lv.size <= X.shape[1] + 2 or np.linalg.matrix_rank(X) < X.shape[1]:
+        return base
+    co, *_ = np.linalg.lstsq(X, lv, rcond=None)
+    r = lv - X @ co
+    cov = np.linalg.inv(X.T @ X) * float(np.sum(r * r)) / (lv.size - X.shape[1])
+    b, se = float(co[-1]), math.sqrt(max(float(cov[-1, -1]), 0.0))
+    if not abs(b) > TREND_Z * se:
+        return base
+    return base.copy(offset=b, offset_t0=t0)
 
 
 def _per_load(base: Params, pr: Prepared, c: Cycles, fn: float, load, sel, **kw) -> list:
