@@ -41,6 +41,13 @@ the model of
   that part of the record's y and of the model's (each less the baseline's
   regression of y on x and x'), over y's spread.
 
+The baseline an effect's gain is judged against, and that its extension
+extends, is read through the training part's linear trend in level when
+that trend is beyond two standard errors (:func:`level_trend`: a sensor's
+offset that drifts shifts every held-out peak, trough and stick time, an
+error none of the other terms removes); ``friction_drift``'s is the plain
+baseline (the trend is its own extension).
+
 gain = 1 - e_extended / e_baseline (:func:`gain_folds`), with a 90 % interval from resampling the
 held-out cycles; always finite.  A fold whose training part cannot form the
 extension at all (too few sticks to read an ageing law on) holds nothing
@@ -74,7 +81,8 @@ METRIC = ("RMS of normalised differences on the held-out cycles (the record's la
           "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing, those "
           "within the record's slips (from peak to arrest) (/ D); "
           "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in "
-          "time (/ spread of y)")
+          "time (/ spread of y); the baseline (and so its extension) read through the training part's linear trend "
+          "in level when beyond 2 standard errors, except for friction_drift")
 
 
 def subset(c: Cycles, sel) -> Cycles:
