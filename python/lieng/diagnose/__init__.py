@@ -66,6 +66,9 @@ SLIP_SHORTEST = 0.2
 #: are what a decelerating branch above the accelerating one makes: the
 #: effect itself)
 SLIP_MATCH = 0.10
+#: the effects whose extension moves the friction level along the record: their gains are judged against
+#: the plain baseline, the others' against the one read through the level's trend (:func:`.extend.level_trend`)
+LEVEL_EFFECTS = ("friction_drift", "load_variation")
 #: a normal force drives the extensions' load low-passed at this many fn (the evidence reads it at 1.5 fn)
 EXT_LOWPASS = 4.0
 
@@ -620,8 +623,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         fits, first, formed = [], None, []
         for j, ((b, train, win, trough), part) in enumerate(zip(fold_models, parts)):
             # judged against the baseline with the training part's drift in its level, when it has one (a
-            # sensor's drift is no effect's; a drift of the friction is its own candidate's extension)
-            if k != "friction_drift":
+            # sensor's drift is no effect's); not a drift of the friction nor a load's course along the record
+            # (a tilted track, a cam), which move the level as a drift does: their own extensions carry it
+            if k not in LEVEL_EFFECTS:
                 if j not in trended:
                     trended[j] = level_trend(b, pr, c, win)
                 b = trended[j]

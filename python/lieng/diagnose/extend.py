@@ -45,8 +45,10 @@ The baseline an effect's gain is judged against, and that its extension
 extends, is read through the training part's linear trend in level when
 that trend is beyond two standard errors (:func:`level_trend`: a sensor's
 offset that drifts shifts every held-out peak, trough and stick time, an
-error none of the other terms removes); ``friction_drift``'s is the plain
-baseline (the trend is its own extension).
+error none of the other terms removes); ``friction_drift``'s and
+``load_variation``'s is the plain baseline (the trend is the one's own
+extension, and a load's course along the record, a tilted track or a cam,
+moves the level as a drift does: the trend would stand for it).
 
 gain = 1 - e_extended / e_baseline (:func:`gain_folds`), with a 90 % interval from resampling the
 held-out cycles; always finite.  A fold whose training part cannot form the
@@ -82,7 +84,7 @@ METRIC = ("RMS of normalised differences on the held-out cycles (the record's la
           "within the record's slips (from peak to arrest) (/ D); "
           "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in "
           "time (/ spread of y); the baseline (and so its extension) read through the training part's linear trend "
-          "in level when beyond 2 standard errors, except for friction_drift")
+          "in level when beyond 2 standard errors, except for friction_drift and load_variation")
 
 
 def subset(c: Cycles, sel) -> Cycles:
@@ -406,8 +408,9 @@ def level_trend(base: Params, pr: Prepared, c: Cycles, train: tuple) -> Params:
     alike, and the stick times with them, for the baseline and any extension
     of it: an error none of the other effects' terms removes, which would
     dilute each one's gain.  Their gains are judged against this baseline
-    (``friction_drift``'s against the plain one: the trend is its own
-    extension).  Only the gains: the calibrated evidence is the plain
+    (``friction_drift``'s and ``load_variation``'s against the plain one:
+    the trend is the one's own extension and stands for the other's slow
+    course).  Only the gains: the calibrated evidence is the plain
     baseline's."""
     sel = window(pr.t[c.peak_i], train)
     if np.count_nonzero(sel) < 6:
