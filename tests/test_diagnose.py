@@ -2111,7 +2111,7 @@ def test_hum_on_times_written_to_few_digits_is_removed_on_the_records_own_clock(
     saw = 2.0 * ((np.arange(6804) * dt * 2.3) % 1.0)
     hum = 0.04 * np.sin(2 * np.pi * 50.0 * np.arange(6804) * dt + 0.7)
     assert set(np.round(np.diff(t), 6)) == {0.00172, 0.00173}
-    rec = record_from_arrays(t, saw + hum, v0=2.0 * 2.3 * 2.0)
+    rec = record_from_arrays(t, saw + hum, v0=2.0 * 2.3)       # (the sawtooth's rise: 2.0 a period at 2.3 Hz)
     removed = [n for n in rec.notes if "mains hum" in n]
     assert len(removed) == 1 and abs(float(removed[0].split()[3]) - 50.0) < 0.01, rec.notes
     assert rec.dt == pytest.approx(dt, rel=1e-5)
