@@ -235,9 +235,15 @@ class Judge:
         # stroke's start (the model started from the record's state there, as :func:`.baseline.simulate`
         # starts it) through the reversal and its dwell, where ageing shows on such a rig
         self.from_stroke = len(pr.strokes) > 1 and k.size < np.unique(c.stroke).size
-        k = k[(pr.t[c.trough_i[k]] >= lo) & (pr.t[c.peak_i[k + 1]] < hi)]
+        # a cycle belongs to the part its predicted slip (the next peak) lies in, wherever the stick before
+        # it started: a stick through a hold can last several periods, and a boundary in time falls within
+        # it in proportion (a part that began within it would never judge the slip after the hold, where
+        # ageing shows); the prediction starts from the record's own state at the trough, which is no target
+        tk = pr.t[c.peak_i[k + 1]]
+        k = k[(tk >= lo) & (tk < hi)]
         if gap is not None:
-            k = k[(pr.t[c.peak_i[k + 1]] < gap[0]) | (pr.t[c.trough_i[k]] >= gap[1])]
+            tk = pr.t[c.peak_i[k + 1]]
+            k = k[(tk < gap[0]) | (tk >= gap[1])]
         if k.size > self.MAX_CYCLES:
             k = k[np.linspace(0, k.size - 1, self.MAX_CYCLES).astype(int)]
         ends = np.array([sl.stop for sl in pr.stroke_slices()])
@@ -530,7 +536,8 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
         k, ts, pk = stick_times(pr, c)
         # the peak's growth from all sticks and from those between two slips alone (a hold in which x
         # relaxes gives the stick through it a lower peak than its duration alone would)
-        sels = [ctr_sel[k]]
+        # (a stick is the training part's when the peak it ends in is, as the judged cycles are)
+        sels = [ctr_sel[k + 1]]
         if not np.array_equal(sels[0], sels[0] & c.next_ok[k]):
             sels.append(sels[0] & c.next_ok[k])
         vl = stick_loading(pr, c, k)
