@@ -641,7 +641,7 @@ def _creep(pr: Prepared, c: Cycles):
 def _drift(pr: Prepared, c: Cycles, nperm: int = 199, given=None):
     if c.n < 8:
         return 0.0, math.inf, 0.0, None
-    lvl = 0.5 * (pr.x[c.peak_i] + pr.x[c.trough_i])
+    lvl = c.levels(pr.x)
     if given is not None and np.ptp(given) > 0:
         # what remains once the level's linear relation with a recorded channel is taken out
         lvl = lvl - np.polyval(np.polyfit(given, lvl, 1), given)

@@ -422,7 +422,7 @@ def level_trend(base: Params, pr: Prepared, c: Cycles, train: tuple) -> Params:
     if np.count_nonzero(sel) < 6:
         return base
     tt = pr.t[c.peak_i[sel]]
-    lv = 0.5 * (pr.x[c.peak_i[sel]] + pr.x[c.trough_i[sel]])
+    lv = c.levels(pr.x)[sel]
     sign = np.array([pr.strokes[int(k)].sign for k in c.stroke[sel]], float)
     t0 = float(np.mean(tt))
     cols = [np.ones(tt.size)] + ([sign] if np.unique(sign).size > 1 else []) + [sign * (tt - t0)]
@@ -630,7 +630,7 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
                 out.append(lvl(base.copy(drv_f=float(f), drv_a=sc * float(math.hypot(co[1], co[2]) / co[0]),
                                          drv_ph=float(math.atan2(co[2], co[1])))))
     elif effect == "friction_drift":
-        lvl_c = 0.5 * (pr.x[c.peak_i] + pr.x[c.trough_i])
+        lvl_c = c.levels(pr.x)
         tt = pr.t[c.peak_i]
         pos = pr.pos[c.peak_i] if pr.pos is not None else tt
         if ctr_sel.sum() >= 6:

@@ -79,6 +79,10 @@ class Cycles:
     def amplitude(self, x) -> float:
         return float(np.median(self.drops(x))) if self.n else 0.0
 
+    def levels(self, x) -> np.ndarray:
+        """Each cycle's level: the mean of its peak and trough in ``x``."""
+        return 0.5 * (x[self.peak_i] + x[self.trough_i])
+
     def periods(self, t) -> np.ndarray:
         k = np.flatnonzero(self.next_ok)
         return t[self.peak_i[k + 1]] - t[self.peak_i[k]]
