@@ -174,7 +174,12 @@ def _plots(d, out: Path, source: str) -> None:
     fig, ax = plt.subplots(figsize=(10, 4.8), dpi=120)
     ax.plot(t, x, color="k", lw=0.7, label="record")
     if d.plot.get("x_base") is not None:
-        ax.plot(t, d.plot["x_base"], color="C0", lw=0.7, label="baseline (thesis 1-DoF)")
+        # (the primary effect's gain is judged against the baseline read through the level's trend, when the
+        # training part's level drifts: the trace shows that baseline, and says so)
+        trend = d.effects[0].get("baseline_offset_trend_per_s", 0.0) if d.effects and d.effect not in NO_EFFECT \
+            else 0.0
+        ax.plot(t, d.plot["x_base"], color="C0", lw=0.7, label="baseline (thesis 1-DoF)" + (
+            f", its level drifting {trend:+.3g} {_lu(d)}/s as the training part's" if trend else ""))
     if d.effect not in NO_EFFECT and d.plot.get("x_ext") is not None:
         ax.plot(t, d.plot["x_ext"], color="C3", lw=0.7, label=f"extended ({d.effect})")
     ax.plot(t[c.peak_i], x[c.peak_i], "v", color="C1", ms=4, label="slip starts (peaks)")
