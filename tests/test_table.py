@@ -486,6 +486,21 @@ def test_a_twist_in_degrees_and_the_motors_angle_are_the_extension_and_the_drive
     assert np.median(read_record(s, v0=2.0).vd) == pytest.approx(2.0 * np.pi / 0.18, rel=1e-12)
 
 
+def test_a_torque_beside_a_speed_in_rpm_reads_with_a_stiffness_given_in_its_unit(tmp_path):
+    """A friction torque beside the motor's speed in rpm (or 1/min), with no
+    angle column: the speed names no angle, so the record's angle unit is
+    the revolution it counts; a --stiffness given with its unit (N·m/rad)
+    is read through it (this raised KeyError 'rpm', found by a black-box
+    audit), and the twist is T / k whatever the unit's spelling."""
+    for head in ("Speed [rpm]", "Motor speed [1/min]"):
+        p = tmp_path / "rpm.csv"
+        p.write_text(f"Time (s),Torque (N·m),{head}\n" + "".join(f"{T[i]},{F[i]},0.5\n" for i in range(200)))
+        r = read_record(p, stiffness=(2.5, "N·m/rad"))
+        np.testing.assert_allclose(r.x, F / 2.5 * 1e3, rtol=1e-9)          # mrad
+        assert np.median(r.vd) == pytest.approx(0.5 * 2e3 * np.pi / 60, rel=1e-12)
+        assert any("N·m/rev" in n for n in r.notes)
+
+
 def test_nm_is_a_nanometre_and_Nm_a_newton_metre(tmp_path):
     """Units are read as written: "x [nm]" is a displacement in nanometres,
     "Torque [Nm]" a torque (its N a capital), and a force record with a

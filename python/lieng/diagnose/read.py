@@ -415,6 +415,9 @@ def _rotary(path, roles, tab, cols, units):
     unit = _unit_key(first[0][1]).replace("°", "deg").split("/")[0] if first else "rad"
     unit = {"radian": "rad", "radians": "rad", "degree": "deg", "degrees": "deg", "°": "deg",
             "revolutions": "rev", "turns": "rev"}.get(unit, unit)
+    if unit not in _ANGLE:
+        # a speed's unit that names no angle (rpm, 1/min, rps): the angle it counts, the revolution
+        unit = "rev"
     note = (f"a rotary record: {', '.join(used)}; its angles in mrad (x is the twist), its torques in N·m; "
             f"a --stiffness is read in N·m/{unit} and a --v0 in {unit}/s (the record's angle unit)")
     return {"unit": unit, "note": note}
