@@ -272,6 +272,27 @@ def test_a_time_that_stops_is_still_refused(tmp_path):
         read_record(p, v0=1.0, stiffness=K)
 
 
+def test_a_row_written_twice_is_dropped_and_said(tmp_path):
+    """A logger that writes a row twice (the same time and the same reading
+    in every column) gives the record without the copies, and a note names
+    the first (this was refused: "time repeats", found by a black-box
+    audit); a repeated time with another reading is no copy (a coarse stamp,
+    or refused: :func:`test_a_time_that_stops_is_still_refused`)."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    rows = PLAIN.splitlines(keepends=True)
+    dup = rows[:51] + [rows[50]] + rows[51:121] + [rows[120]] + rows[121:]
+    p = tmp_path / "dup.csv"
+    p.write_text("".join(dup))
+    r = read_record(p, v0=1.0, stiffness=K)
+    np.testing.assert_array_equal(r.x, ref.x)
+    np.testing.assert_array_equal(r.t, ref.t)
+    assert any("2 rows repeat the row before exactly" in n and "line 52" in n for n in r.notes), r.notes
+    a, b = rows[50].rstrip("\n").split(",")
+    q = tmp_path / "conflict.csv"
+    q.write_text("".join(rows[:51] + [f"{a},{float(b) + 0.01}\n"] + rows[51:]))
+    assert not any("repeat the row before exactly" in n for n in read_record(q, v0=1.0, stiffness=K).notes)
+
+
 @pytest.mark.parametrize("kind", ["mat", "mat-row-vectors", "npz"])
 def test_named_arrays_read_as_the_plain_file(tmp_path, kind):
     """A MATLAB file (as scipy.io.savemat writes v5) or a NumPy archive of

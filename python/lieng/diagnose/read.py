@@ -681,6 +681,22 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             _fail(f"{path}: {n} samples in the longest run: too short for stick-slip analysis (at least {MIN_SAMPLES})")
         d = np.diff(t)
         bad = np.flatnonzero(d <= 0)
+    dup_note = None
+    if bad.size and np.all(d[bad] == 0) and bad.size <= 0.05 * n:
+        # a row written twice (a logger's buffer flushed again): the same time and the same reading in every
+        # column read is no sample; dropped and said
+        rep = bad + 1
+        if all(np.array_equal(col[rep], col[rep - 1], equal_nan=True) for _, col in cols.values()):
+            keep = np.ones(n, bool)
+            keep[rep] = False
+            dup_note = (f"{rep.size} row{'s' if rep.size > 1 else ''} repeat{'' if rep.size > 1 else 's'} the row "
+                        f"before exactly (first at line {tab.lines[rep[0]]}; a row written twice): dropped")
+            t = t[keep]
+            cols = {k: (nm, col[keep]) for k, (nm, col) in cols.items()}
+            tab.lines = tab.lines[keep]
+            n = t.size
+            d = np.diff(t)
+            bad = np.flatnonzero(d <= 0)
     stamps_note = None
     stamped = _stamps_quantised(t) if bad.size and np.all(d[bad] == 0) else None
     if stamped is not None:
@@ -693,7 +709,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
     notes = [m for m in (rotary["note"] if rotary else None, *given, pull_note, notes_pair, slider_note, mu_note, drive_note,
-                         serial_note, runs_note, stamps_note) if m]
+                         serial_note, runs_note, dup_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
     if rate is not None:
