@@ -1762,6 +1762,32 @@ def test_a_flat_record_has_no_cycle_and_a_force_that_changes_sign_is_questioned(
     assert any("taken to reverse" in n and "4 strokes" in n for n in d.notes)
 
 
+def test_a_reciprocating_slider_that_never_slides_has_no_sliding_level():
+    """A reciprocating drive whose stroke (2 mm of x behind the spring)
+    stays under the static limit (4 mm): x follows the drive through every
+    stroke, a rigid stick, and no stroke reaches a level.  Nothing is read
+    as steady sliding: no direction asymmetry (the median of each stroke's
+    second half differs between the directions by where the stroke starts,
+    and was named at +4 of the level, p = 0, found by a black-box audit),
+    and the reason says the slider does not slide.  The same drive over a
+    slider that slides at 0.5 mm after a ramp reads its level as before."""
+    dt, v0, half = 1e-3, 2.0, 1.0                    # s, mm/s, s per stroke
+    t = np.arange(int(24 * half / dt)) * dt
+    ph = (t / half) % 2.0
+    pos = np.where(ph < 1.0, ph, 2.0 - ph) * v0 * half - 1.0          # a triangle, -1 .. +1 mm
+    vd = np.where(ph < 1.0, v0, -v0)
+    noise = 0.002 * np.random.default_rng(0).standard_normal(t.size)
+    d = diagnose(record_from_arrays(t, pos + noise, vd), 20.0)
+    assert d.effect == "no_stick_slip" and not d.effects
+    assert "does not slide" in d.reason and "steady sliding" not in d.reason
+    assert not any(r.get("named") for r in d.evidence.values())
+    # each stroke: a rigid ramp from the reversal, then sliding at 0.5 mm
+    slides = np.where(ph < 1.0, np.minimum(v0 * ph * half, 0.5), -np.minimum(v0 * (ph - 1.0) * half, 0.5))
+    d = diagnose(record_from_arrays(t, slides + noise, vd), 20.0)
+    assert d.effect == "no_stick_slip" and "steady sliding over" in d.reason
+    assert abs(np.mean(d.sliding["levels_mm"]) - 0.5) < 0.01
+
+
 def _reciprocating_dwells(v0=4.0, fn=25.0, stroke_s=1.2, dwell_s=0.3, strokes=6, dt=2e-4, every=5):
     """A pin on a spring (static friction 1.0, kinetic 0.7, in units of
     k mm) on a stage that runs +v0 and -v0 in turn with dwells at rest

@@ -223,7 +223,13 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
               f"only {c_n} stick-slip cycle{'s' if c_n > 1 else ''} found (a drop faster than the rise before it, "
               f"from a peak to a trough within one stroke): too few to diagnose (4 or more are needed: a longer "
               f"record)")
-    if aux["levels"].size >= 4:
+    if aux.get("stuck"):
+        reason += (f"; the slider does not slide: in {aux['stuck']} of {aux['levels'].size} strokes x still rises "
+                   f"over the stroke's last quarter at {np.nanmedian(aux['late_slope']):.2g} of its ramp's slope "
+                   f"(per mm of drive travel), so the spring is still loading when the drive reverses (the static "
+                   f"limit is not reached within a stroke: a longer stroke, or check --stiffness); no sliding level "
+                   f"to read")
+    elif aux["levels"].size >= 4:
         tr = aux["travel"][np.isfinite(aux["travel"])]
         rs = aux["ramp_slope"][np.isfinite(aux["ramp_slope"])]
         reason += (f"; steady sliding over {aux['levels'].size} strokes at a level of {aux['level']:.4g} mm "
@@ -237,7 +243,8 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
             reason += "; " + "; ".join(f"{k}: {rows[k]['effect_size']:+.3g} of the level, p = {rows[k]['p']:.2g}"
                                        for k in named)
     sliding = {"levels_mm": aux["levels"].tolist(), "stroke_sign": aux["sign"].tolist(),
-               "presliding_travel_mm": aux["travel"].tolist(), "ramp_slope": aux["ramp_slope"].tolist()}
+               "presliding_travel_mm": aux["travel"].tolist(), "ramp_slope": aux["ramp_slope"].tolist(),
+               "late_slope_over_ramp": aux["late_slope"].tolist(), "stuck": bool(aux.get("stuck"))}
     return Diagnosis(effect="no_stick_slip", reason=reason, effects=effects, evidence=_finite(rows),
                      sliding=_finite(sliding),
                      fn=fn or 0.0, fn_source=src, fn_data=fd, fn_data_se=fse, notes=notes, warnings=warnings,

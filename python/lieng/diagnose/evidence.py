@@ -101,7 +101,7 @@ from lieng.diagnose.goodness import goodness
 from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit,
                                      line_fit, lowpass, position_anova, refine_line, spectral_line, y_locked)
 from lieng.diagnose.segment import (Cycles, Prepared, creep_pairs, reversal_ramp, savgol3, savgol3_kernels,
-                                    slip_arcs, stick_part, stick_ratios)
+                                    slip_arcs, stick_part, stick_ratios, travel)
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "fn_readings", "lowpass"]
 
@@ -793,6 +793,11 @@ def fn_readings(pr: Prepared, c: Cycles, fn: float, u: float, D: float, ylow=Non
 SLIDING = ("direction_asymmetry", "friction_drift", "position_dependence")
 
 
+#: a stroke whose x still rises, over its last quarter, at more than this share of its ramp's slope (per mm
+#: of the drive's travel) has not reached a sliding level: the slider is still stuck
+STILL_STUCK = 0.5
+
+
 def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     """Steady sliding, stroke by stroke (a record without stick-slip): the
     sliding level of each stroke (median x over its second half), the travel
@@ -800,8 +805,11 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     that level (the presliding ramp) and the ramp's slope in x per mm of
     travel (1 for a rigid stick behind the given spring); across strokes the
     direction asymmetry and the drift of the level, each over the mean
-    level, with block-jackknife errors over the strokes in time order."""
-    lv, trav, slope, sign, tmid = [], [], [], [], []
+    level, with block-jackknife errors over the strokes in time order.
+    When most strokes end still loading the spring (x rising over their
+    last quarter at more than STILL_STUCK of the ramp's slope: the slider
+    never slides), no statistic is read and ``aux["stuck"]`` counts them."""
+    lv, trav, slope, sign, tmid, late = [], [], [], [], [], []
     for s in pr.strokes:
         if s.n < 20:
             continue
@@ -812,10 +820,22 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
         slope.append(0.9 * (P - x0) / L if L and L > 0 else math.nan)
         sign.append(s.sign)
         tmid.append(float(np.mean(t)))
-    lv, trav, slope, sign, tmid = map(np.asarray, (lv, trav, slope, sign, tmid))
+        # x's slope over the drive's travel in the stroke's last quarter, over the ramp's: ~0 once the slider
+        # slides at its level, ~1 when it is still stuck, loading the spring
+        q = s.n - s.n // 4
+        tr = travel(pr.vd[s.j0:s.j0 + s.n], np.diff(t))
+        x = pr.x[s.j0:s.j0 + s.n]
+        ok = tr[-1] - tr[q] > 0 and slope[-1] > 0
+        late.append(float(np.polyfit(tr[q:], x[q:], 1)[0]) / slope[-1] if ok else math.nan)
+    lv, trav, slope, sign, tmid, late = map(np.asarray, (lv, trav, slope, sign, tmid, late))
     st, se = {k: 0.0 for k in CANDIDATES}, {k: math.inf for k in CANDIDATES}
     mean = float(np.mean(lv)) if lv.size else 0.0
-    aux = {"levels": lv, "travel": trav, "ramp_slope": slope, "sign": sign, "t": tmid, "level": mean}
+    aux = {"levels": lv, "travel": trav, "ramp_slope": slope, "sign": sign, "t": tmid, "level": mean,
+           "late_slope": late}
+    if lv.size >= 4 and np.count_nonzero(late > STILL_STUCK) > lv.size / 2:
+        # most strokes end still loading the spring: the slider does not slide, and there is no level to read
+        aux["stuck"] = int(np.count_nonzero(late > STILL_STUCK))
+        return st, se, aux
     if lv.size < 4 or not mean > 0:
         return st, se, aux
     fw, bw = sign > 0, sign < 0
