@@ -313,6 +313,27 @@ def test_named_arrays_read_as_the_plain_file(tmp_path, kind):
     assert any("k_spring" in n and "passed over" in n for n in r.notes)
 
 
+def test_an_array_files_missing_values_and_short_vectors_read_as_a_tables_do(tmp_path):
+    """A NumPy archive with NaN in a vector leaves those samples out and
+    says so, as a text table with empty cells does (it was refused); one
+    whose force is shorter than its time names the force as passed over
+    where it says no force was found (it said "no ... column in the
+    header", of a file with no header; both found by a black-box audit)."""
+    Fn = F.copy()
+    Fn[[40, 41, 120]] = np.nan
+    p = tmp_path / "nan.npz"
+    np.savez(p, t=T, F=Fn)
+    q = tmp_path / "nan.csv"
+    q.write_text("t [s],F [N]\n" + "".join(f"{a},{'' if np.isnan(b) else b}\n" for a, b in zip(T, Fn)))
+    r, ref = read_record(p, v0=1.0, stiffness=K), read_record(q, v0=1.0, stiffness=K)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-12)
+    assert any("3 rows with a missing value" in n for n in r.notes)
+    s = tmp_path / "short.npz"
+    np.savez(s, t=T, F=F[:150])
+    with pytest.raises(LiengInputError, match="among the variables .variable F passed over"):
+        read_record(s, v0=1.0, stiffness=K)
+
+
 @pytest.mark.parametrize("content,msg", [(b"MATLAB 7.3 MAT-file, Platform: GLNXA64" + bytes(200), "v7.3"),
                                          (b"not a mat file at all" * 10, "not a readable MATLAB file")])
 def test_an_unreadable_mat_file_is_named(tmp_path, content, msg):

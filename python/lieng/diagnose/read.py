@@ -630,12 +630,19 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if rate is not None and not (math.isfinite(rate) and 1.0 / DT_RANGE[1] <= rate <= 1.0 / DT_RANGE[0]):
         _fail(f"--rate {rate:g}: the sampling rate must be a number from {1.0 / DT_RANGE[1]:.3g} to "
               f"{1.0 / DT_RANGE[0]:.3g} Hz")
+    # an array file (.mat, .npz) has no header: its variables are the columns, and one of another length or
+    # shape is passed over (the role it would have had is then missing: said beside the missing role)
+    where = "among the variables" if tab.passed_over or str(path).lower().endswith((".npz", ".mat")) \
+        else "in the header"
+    over = (f" (variable{'s' if len(tab.passed_over) > 1 else ''} {', '.join(tab.passed_over)[:120]} passed over: not "
+            f"vectors of the record's length)"
+            if tab.passed_over else "")
     if "t" not in cols and rate is None:
-        _fail(f"{path}: no time column (t or time) in the header: add one, or give --rate (the sampling rate, Hz)")
+        _fail(f"{path}: no time column (t or time) {where}{over}: add one, or give --rate (the sampling rate, Hz)")
     mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
         else None
     if "x" not in cols and "F" not in cols:
-        _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column in the header")
+        _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column {where}{over}")
     n = len(tab)
     if n < MIN_SAMPLES:
         _fail(f"{path}: {n} samples: too short for stick-slip analysis (at least {MIN_SAMPLES})")

@@ -717,15 +717,21 @@ def _read_arrays(path, expect: str) -> Table:
     n = max(set(lengths), key=lambda m: (lengths.count(m), m))
     names = [k for k, v in vec.items() if v.size == n]
     other += [k for k in vec if vec[k].size != n]
+    # a NaN is a missing value, as in a text table: its sample is left out and said (the record is resampled
+    # across it); an infinity or an absurd magnitude is no measurement
+    missing = np.zeros(n, bool)
     for k in names:
-        bad = np.flatnonzero(~np.isfinite(vec[k]) | (np.abs(vec[k]) > MAX_ABS))
+        missing |= np.isnan(vec[k])
+        bad = np.flatnonzero(np.isinf(vec[k]) | (np.abs(np.nan_to_num(vec[k])) > MAX_ABS))
         if bad.size:
             raise LiengInputError(f"{path}: variable {k}, element {bad[0] + 1}: {vec[k][bad[0]]} is not a finite "
                                   f"measurement")
     if n > MAX_ROWS:
         raise LiengInputError(f"{path}: more than {MAX_ROWS} samples: split the record")
-    tab = Table(path, names, [""] * len(names), {k: vec[k] for k in names}, np.arange(1, n + 1))
+    keep = ~missing
+    tab = Table(path, names, [""] * len(names), {k: vec[k][keep] for k in names}, np.arange(1, n + 1)[keep])
     tab.passed_over = sorted(other)
+    tab.dropped = int(np.count_nonzero(missing))
     return tab
 
 
