@@ -832,9 +832,10 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     mean = float(np.mean(lv)) if lv.size else 0.0
     aux = {"levels": lv, "travel": trav, "ramp_slope": slope, "sign": sign, "t": tmid, "level": mean,
            "late_slope": late}
-    if lv.size >= 4 and np.count_nonzero(late > STILL_STUCK) > lv.size / 2:
+    stuck = int(np.count_nonzero(late > STILL_STUCK))
+    if lv.size >= 4 and stuck > lv.size / 2:
         # most strokes end still loading the spring: the slider does not slide, and there is no level to read
-        aux["stuck"] = int(np.count_nonzero(late > STILL_STUCK))
+        aux["stuck"] = stuck
         return st, se, aux
     if lv.size < 4 or not mean > 0:
         return st, se, aux

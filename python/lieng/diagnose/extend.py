@@ -240,10 +240,10 @@ class Judge:
         # it in proportion (a part that began within it would never judge the slip after the hold, where
         # ageing shows); the prediction starts from the record's own state at the trough, which is no target
         tk = pr.t[c.peak_i[k + 1]]
-        k = k[(tk >= lo) & (tk < hi)]
+        inside = (tk >= lo) & (tk < hi)
         if gap is not None:
-            tk = pr.t[c.peak_i[k + 1]]
-            k = k[(tk < gap[0]) | (tk >= gap[1])]
+            inside &= (tk < gap[0]) | (tk >= gap[1])
+        k = k[inside]
         if k.size > self.MAX_CYCLES:
             k = k[np.linspace(0, k.size - 1, self.MAX_CYCLES).astype(int)]
         ends = np.array([sl.stop for sl in pr.stroke_slices()])
