@@ -666,6 +666,15 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         t = np.arange(n) / float(rate)
     d = np.diff(t)
     bad = np.flatnonzero(d <= 0)
+
+    def take(keep):
+        """The rows ``keep`` of the time and the columns read (their line
+        numbers with them): (t, cols, its steps, the steps that do not increase)."""
+        tab.lines = tab.lines[keep]
+        tk = t[keep]
+        dk = np.diff(tk)
+        return tk, {k: (nm, col[keep]) for k, (nm, col) in cols.items()}, dk, np.flatnonzero(dk <= 0)
+
     restart = bad[t[bad + 1] <= t[0]] if bad.size else bad
     runs_note = None
     if restart.size and restart.size >= 0.5 * (n - 1):
@@ -680,14 +689,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         runs_note = (f"the time starts again {restart.size} time{'s' if restart.size > 1 else ''} (runs appended to "
                      f"one file): the longest run, lines {tab.lines[keep.start]} to {tab.lines[keep.stop - 1]}, is "
                      f"analysed")
-        t = t[keep]
-        cols = {k: (nm, col[keep]) for k, (nm, col) in cols.items()}
-        tab.lines = tab.lines[keep]
+        t, cols, d, bad = take(keep)
         n = t.size
         if n < MIN_SAMPLES:
             _fail(f"{path}: {n} samples in the longest run: too short for stick-slip analysis (at least {MIN_SAMPLES})")
-        d = np.diff(t)
-        bad = np.flatnonzero(d <= 0)
     dup_note = None
     if bad.size and np.all(d[bad] == 0) and bad.size <= 0.05 * n:
         # a row written twice (a logger's buffer flushed again): the same time and the same reading in every
@@ -698,12 +703,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             keep[rep] = False
             dup_note = (f"{rep.size} row{'s' if rep.size > 1 else ''} repeat{'' if rep.size > 1 else 's'} the row "
                         f"before exactly (first at line {tab.lines[rep[0]]}; a row written twice): dropped")
-            t = t[keep]
-            cols = {k: (nm, col[keep]) for k, (nm, col) in cols.items()}
-            tab.lines = tab.lines[keep]
+            t, cols, d, bad = take(keep)
             n = t.size
-            d = np.diff(t)
-            bad = np.flatnonzero(d <= 0)
     stamps_note = None
     stamped = _stamps_quantised(t) if bad.size and np.all(d[bad] == 0) else None
     if stamped is not None:
