@@ -24,8 +24,11 @@ model started in stick at the record's displacement on the record's drive
 and clock), the RMS of the normalised differences between the record and
 the model of
 
-* each cycle's stick time (from the trough to the next slip's halfway
-  crossing, over the mean period), peak and trough (over D):
+* each cycle's stick, measured in the drive's travel (from the trough to
+  the next slip's halfway crossing, over the mean travel of a period: the
+  spring loads with the travel, and a hold adds time, not load; with a
+  constant drive this is the stick time over the mean period), peak and
+  trough (over D):
   what the model predicts *when* and *how high* (a modulated drive, ageing
   under holds or a stepped drive, a load or a drift show here);
 * the mean slip waveform: x at 9 instants over 0.6 natural periods centred
@@ -79,7 +82,7 @@ METRIC = ("RMS of normalised differences on the held-out cycles (the record's la
           "first 70 %, and its first 30 % with models fitted on its last 70 %; on a record of up to 250 000 samples "
           "also its middle, in two parts each with models fitted on the rest; a fold whose training part cannot form "
           "the extension is left out), one cycle ahead from the record's own state (from "
-          "each trough): stick time to the next slip's halfway crossing (/ mean period), peak and trough (/ drop D); "
+          "each trough): stick in the drive's travel to the next slip's halfway crossing (/ mean travel of a period; with a constant drive, the stick time / mean period), peak and trough (/ drop D); "
           "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing, those "
           "within the record's slips (from peak to arrest) (/ D); "
           "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in "
@@ -204,8 +207,9 @@ class Judge:
     (ch. 2.3: the baseline started from the record's state): from each
     record trough (the slider just stuck, at the level of the stick line
     there, :func:`stick_start`) the model runs on the record's drive and clock to its next slip, and its
-    predicted stick time (to the next slip's halfway crossing, over the mean
-    period), peak and trough (over D) are compared with the record's, plus
+    predicted stick (the drive's travel to the next slip's halfway crossing,
+    over the mean travel of a period: a hold adds time, not load), peak and
+    trough (over D) are compared with the record's, plus
     the mean slip waveform around the halfway crossing of each predicted
     slip (over D) against the record's; e = sqrt(mean of the per-cycle
     squares + mean of the waveform's squares [+ the normal channel's
@@ -214,8 +218,8 @@ class Judge:
     reciprocating record whose sticks are mostly at the reversals (fewer
     slips followed by another in their stroke than strokes) is also judged on
     each stroke's first slip, the model started from the record's x at the
-    stroke's start and run through the reversal (that stick time over the
-    mean of the record's own)."""
+    stroke's start and run through the reversal (that stick's travel over
+    the mean of the record's own)."""
 
     #: at most this many cycles are judged (an even subset; linear time)
     MAX_CYCLES = 200
@@ -270,18 +274,33 @@ class Judge:
         last = np.searchsorted(c.trough_i, i0[k.size:]) - 1          # (the troughs are in time order)
         self.rest[k.size:] = np.where(last >= 0, pr.t[i0[k.size:]] - pr.t[c.trough_i[np.maximum(last, 0)]], 0.0)
         self._k = k
-        span = c.trough_i[tgt] - i0
-        self.slices = [slice(int(a), int(min(a + 2 * m + 8, ends[c.stroke[j]]))) for a, m, j in zip(i0, span, tgt)]
         t, x = pr.t, pr.x
+        # the stick is measured in the drive's travel, not in time: the spring loads with the travel, and a
+        # hold adds time, not load (a slip that comes just as the drive stops, or just after the hold, is a
+        # small difference of travel, where in time it was the whole hold); with a constant drive the two are
+        # the same over their scales
+        self.trav = np.r_[0.0, np.cumsum(0.5 * (np.abs(pr.vd[1:]) + np.abs(pr.vd[:-1])) * np.diff(t))]
+        kk = np.flatnonzero(c.next_ok)
+        pt = np.diff(self.trav[np.c_[c.peak_i[kk], c.peak_i[kk + 1]]], axis=1).ravel() if kk.size else np.zeros(0)
+        self.PT = float(np.mean(pt)) if pt.size and np.mean(pt) > 0 else 0.0
+        if not self.PT > 0:
+            self.trav, self.PT = t - t[0], self.P          # (no drive to measure in: the clock)
+        # each prediction runs over twice the record's travel to its target's arrest (and at least twice its
+        # samples): through a hold, until the drive has moved as far again
+        span = c.trough_i[tgt] - i0
+        need = self.trav[i0] + 2.0 * (self.trav[c.trough_i[tgt]] - self.trav[i0])
+        far = np.searchsorted(self.trav, need) + 8
+        self.slices = [slice(int(a), int(min(max(a + 2 * m + 8, f), ends[c.stroke[j]])))
+                       for a, m, f, j in zip(i0, span, far, tgt)]
         self.tau = np.linspace(-0.3 / fn, 0.3 / fn, NWAVE)
         slips = [_slip(t, x, int(c.peak_i[j]), int(c.trough_i[j]) + 1, self.tau) for j in tgt]
-        tslip = np.array([ts for ts, _ in slips]) - t[i0] if slips else np.zeros(0)
-        # the stick time over its scale: the mean period within a stroke; from a stroke's start, the mean of
-        # the record's times to a stroke's first slip
-        self.scale = np.full(tslip.size, self.P)
+        tslip = (np.interp([ts for ts, _ in slips], t, self.trav) - self.trav[i0]) if slips else np.zeros(0)
+        # the stick's travel over its scale: the mean travel of a period within a stroke; from a stroke's start,
+        # the mean of the record's travels to a stroke's first slip
+        self.scale = np.full(tslip.size, self.PT)
         if first.size:
             s0 = float(np.mean(tslip[k.size:]))
-            self.scale[k.size:] = s0 if s0 > 0 else self.P
+            self.scale[k.size:] = s0 if s0 > 0 else self.PT
         self.rec = np.column_stack([tslip / self.scale, x[c.peak_i[tgt]] / self.D, x[c.trough_i[tgt]] / self.D]) \
             if tslip.size else np.zeros((0, 3))
         waves = [w for _, w in slips if w is not None]
@@ -323,15 +342,16 @@ class Judge:
         for row, sl in enumerate(self.slices):
             xs, _, state = run_slice(pr, p, self.fn, sl, starts[row], self.ylow, t_stick=self.rest[row])
             slip = np.flatnonzero(state == 0)
+            tr = self.trav[sl]
             if slip.size == 0:
-                pred[row] = ((t[sl.stop - 1] - t[sl.start]) / self.scale[row], xs[-1] / self.D, xs[-1] / self.D)
+                pred[row] = ((tr[-1] - tr[0]) / self.scale[row], xs[-1] / self.D, xs[-1] / self.D)
                 continue
             back = slip[0] + np.flatnonzero(state[slip[0]:] == 1)
             end = int(back[0]) if back.size else xs.size - 1
             ip = int(np.argmax(xs[:end + 1]))
             it = ip + int(np.argmin(xs[ip:end + 1]))
             ts, w = _slip(t[sl], xs, ip, it + 1, self.tau)
-            pred[row] = ((ts - t[sl.start]) / self.scale[row], xs[ip] / self.D, xs[it] / self.D)
+            pred[row] = ((float(np.interp(ts, t[sl], tr)) - tr[0]) / self.scale[row], xs[ip] / self.D, xs[it] / self.D)
             if w is not None:
                 waves.append(w)
         dc = self.rec - pred
