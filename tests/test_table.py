@@ -543,6 +543,30 @@ def test_a_torque_beside_a_speed_in_rpm_reads_with_a_stiffness_given_in_its_unit
         assert any("N·m/rev" in n for n in r.notes)
 
 
+def test_a_rotary_records_units_read_as_the_last_part_of_its_names(tmp_path):
+    """A rotary record whose units are the last part of its columns' names
+    ("torque_Nm", "speed_rpm", "speed_deg_s", "twist_deg", "drive_angle_deg")
+    reads as the same record with its units in brackets does (the suffixes
+    were a linear record's only: "speed_deg_s" was read as a time in s, the
+    angles were not read and the drive's position came out NaN)."""
+    def same(a, b):
+        ra, rb = read_record(a, stiffness=2.5), read_record(b, stiffness=2.5)
+        np.testing.assert_allclose(rb.x, ra.x, rtol=1e-12)
+        np.testing.assert_allclose(rb.vd, ra.vd, rtol=1e-12)
+        assert np.all(np.isfinite(rb.vd)) and ra.notes[-1].split(";")[-1] == rb.notes[-1].split(";")[-1]
+    rows = "".join(f"{T[i]},{F[i]},{30 + 0.2 * i}\n" for i in range(200))
+    for bracket, suffix in (("Speed [rpm]", "speed_rpm"), ("Motor speed [deg/s]", "motor_speed_deg_s")):
+        a, b = tmp_path / "a.csv", tmp_path / "b.csv"
+        a.write_text(f"Time [s],Torque [N·m],{bracket}\n" + rows)
+        b.write_text(f"time_s,torque_Nm,{suffix}\n" + rows)
+        same(a, b)
+    a, b = tmp_path / "c.csv", tmp_path / "d.csv"
+    twist = "".join(f"{1e3 * T[i]},{F[i]},{2 * T[i]}\n" for i in range(200))
+    a.write_text("Time [ms],Spring deflection [deg],Drive angle [deg]\n" + twist)
+    b.write_text("time_ms,spring_deflection_deg,drive_angle_deg\n" + twist)
+    same(a, b)
+
+
 def test_nm_is_a_nanometre_and_Nm_a_newton_metre(tmp_path):
     """Units are read as written: "x [nm]" is a displacement in nanometres,
     "Torque [Nm]" a torque (its N a capital), and a force record with a

@@ -423,6 +423,19 @@ def _rotary(path, roles, tab, cols, units):
     return {"unit": unit, "note": note}
 
 
+def _suffix_fits(role, suffix: str) -> bool:
+    """Whether a name's last part ``suffix`` is a unit of the role the rest
+    of the name has: a length, velocity, time, force or stress of its role,
+    or a rotary rig's (an angle, of no role; an angular speed, the drive's;
+    a torque, the friction's)."""
+    u = _unit_key(suffix)
+    if role is None:
+        return u in _ANGLE_UNITS
+    if (role == "v0" and u in _ANGULAR_VELOCITY) or (role == "F" and torque_scale(suffix) is not None):
+        return True
+    return any(r == role and u in units_of for r, units_of in _FITS)
+
+
 def _column_role(name: str, unit: str = ""):
     """(role, unit) of a header cell: :func:`_role`, or with the unit as the
     name's last part ("time_ms", "force_mN", a velocity's two: "speed_um_s")
@@ -436,7 +449,7 @@ def _column_role(name: str, unit: str = ""):
                 continue
             suffix = "/".join(parts[-k:])
             role = _role("_".join(parts[:-k]), suffix)
-            if role is not None and any(r == role and _unit_key(suffix) in units_of for r, units_of in _FITS):
+            if _suffix_fits(role, suffix):
                 return role, suffix
     role = _role(name, unit)
     if role is None and not unit and "_" in name:
@@ -575,9 +588,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     _check_highpass(highpass)
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
-                     missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None and not _rotational(unit),
+                     missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None
+                     and not _rotational(_column_role(name, unit)[1] or unit),
                      sparse=lambda name, unit: _column_role(name, unit)[0] in ("position", "v0", "y", "N")
-                     or _rotational(unit))
+                     or _rotational(_column_role(name, unit)[1] or unit))
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
     cols, units = {}, {}
     for name, role, unit in roles:
