@@ -164,10 +164,10 @@ def _stiffness_from_sticks(pr):
     for s in pr.strokes:
         if s.n < 20:
             continue
-        P, x0, L, _ = reversal_ramp(pr, s)
+        ramp = reversal_ramp(pr, s)
         step = float(np.median(np.abs(pr.vd[s.j0:s.j0 + s.n]))) * pr.dt
-        if P > x0 and L > step:
-            slopes.append(0.9 * (P - x0) / L)
+        if ramp.level > ramp.x0 and ramp.travel > step:
+            slopes.append(ramp.slope)
     return float(np.median(slopes)) if len(slopes) >= 2 else None
 
 

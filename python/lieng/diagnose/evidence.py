@@ -101,7 +101,7 @@ from lieng.diagnose.goodness import goodness
 from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit,
                                      line_fit, lowpass, position_anova, refine_line, spectral_line, y_locked)
 from lieng.diagnose.segment import (Cycles, Prepared, creep_pairs, reversal_ramp, savgol3, savgol3_kernels,
-                                    slip_arcs, stick_part, stick_ratios, travel)
+                                    slip_arcs, stick_part, stick_ratios)
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "fn_readings", "lowpass"]
 
@@ -810,20 +810,21 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     last quarter at more than STILL_STUCK of the ramp's slope: the slider
     never slides), no statistic is read and ``aux["stuck"]`` counts them."""
     lv, trav, slope, sign, tmid, late = [], [], [], [], [], []
+    ramps = {}
     for s in pr.strokes:
         if s.n < 20:
             continue
-        P, x0, L, _ = reversal_ramp(pr, s)
-        t = pr.t[s.j0:s.j0 + s.n]
-        lv.append(P)
-        trav.append(L)
-        slope.append(0.9 * (P - x0) / L if L and L > 0 else math.nan)
+        ramp = reversal_ramp(pr, s)
+        ramps[s.j0] = ramp
+        lv.append(ramp.level)
+        trav.append(ramp.travel)
+        slope.append(ramp.slope)
         sign.append(s.sign)
-        tmid.append(float(np.mean(t)))
+        tmid.append(float(np.mean(pr.t[s.j0:s.j0 + s.n])))
         # x's slope over the drive's travel in the stroke's last quarter, over the ramp's: ~0 once the slider
         # slides at its level, ~1 when it is still stuck, loading the spring
         q = s.n - s.n // 4
-        tr = travel(pr.vd[s.j0:s.j0 + s.n], np.diff(t))
+        tr = ramp.tr
         x = pr.x[s.j0:s.j0 + s.n]
         ok = tr[-1] - tr[q] > 0 and slope[-1] > 0
         late.append(float(np.polyfit(tr[q:], x[q:], 1)[0]) / slope[-1] if ok else math.nan)
@@ -857,7 +858,7 @@ def sliding_statistics(pr: Prepared) -> tuple[dict, dict, dict]:
     if pr.pos is not None and lv.size >= 4 and np.any(fw) and np.any(bw):
         ps, vs, gs, ds = [], [], [], []
         for k, s in enumerate(pr.strokes):
-            m0 = reversal_ramp(pr, s)[3]
+            m0 = ramps[s.j0].k90 if s.j0 in ramps else reversal_ramp(pr, s).k90
             m0 = s.n // 2 if m0 is None else m0
             sl = slice(s.j0 + m0, s.j0 + s.n)
             ps.append(pr.pos[sl])

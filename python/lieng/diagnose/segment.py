@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import NamedTuple
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -818,18 +819,37 @@ def travel(vd, dt):
     return cumulative_trapezoid(vd, dt)
 
 
-def reversal_ramp(p: Prepared, s) -> tuple[float, float, float, int | None]:
-    """A stroke's presliding ramp in steady sliding: its sliding level (the
-    median x over its second half), x at its start (the median of its first
-    three samples), the drive's travel (mm) until x has first gone 90 %
-    of the way from the start to the level (nan when it never does) and
-    that sample within the stroke (None when it never does)."""
+class Ramp(NamedTuple):
+    """A stroke's presliding ramp (:func:`reversal_ramp`)."""
+    #: the sliding level (the median x over the stroke's second half)
+    level: float
+    #: x at the stroke's start (the median of its first three samples)
+    x0: float
+    #: the drive's travel (mm) until x has first gone 90 % of the way from x0 to the level (nan when it never does)
+    travel: float
+    #: that sample within the stroke (None when it never does)
+    k90: int | None
+    #: the drive's travel from the stroke's start at each of its samples (mm)
+    tr: np.ndarray
+
+    @property
+    def slope(self) -> float:
+        """The ramp's slope, x per mm of the drive's travel to its 90 % point
+        (1 for a rigid stick behind the given spring; nan without a ramp)."""
+        return 0.9 * (self.level - self.x0) / self.travel if self.travel > 0 else math.nan
+
+
+def reversal_ramp(p: Prepared, s) -> Ramp:
+    """A stroke's presliding ramp in steady sliding (:class:`Ramp`): its
+    sliding level, x at its start, the drive's travel until x has first
+    gone 90 % of the way from the start to the level, that sample, and the
+    travel along the stroke."""
     sl = slice(s.j0, s.j0 + s.n)
     x = p.x[sl]
     P, x0 = float(np.median(x[x.size // 2:])), float(np.median(x[:3]))
     tr = travel(p.vd[sl], np.diff(p.t[sl]))
     k90 = np.flatnonzero((x - x0) >= 0.9 * (P - x0)) if P > x0 else np.array([], int)
-    return (P, x0, float(tr[k90[0]]), int(k90[0])) if k90.size else (P, x0, math.nan, None)
+    return Ramp(P, x0, float(tr[k90[0]]), int(k90[0]), tr) if k90.size else Ramp(P, x0, math.nan, None, tr)
 
 
 #: the part of a stick (trough to next peak) its line is read on: past the
