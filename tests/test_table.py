@@ -425,10 +425,12 @@ def test_a_spreadsheet_workbook_reads_as_the_plain_file(tmp_path, shared):
 
 
 @pytest.mark.parametrize("head, scale", [("position [in]", 1 / 25.4), ("stage_position_mil", 1 / 0.0254),
-                                         ("speed [in/s]", None), ("drive_um_s", None)])
+                                         ("speed [in/s]", None), ("drive_um_s", None),
+                                         ("Velocity_um_per_s", None)])
 def test_an_american_or_suffixed_drive_unit_is_read(tmp_path, head, scale):
     """A drive in inches (in, mil, in/s) or with its unit as the name's last
-    parts ("drive_um_s") reads to the same drive velocity (0.5 mm/s)."""
+    parts ("drive_um_s", "Velocity_um_per_s": was read as a time in s)
+    reads to the same drive velocity (0.5 mm/s)."""
     if scale is None:
         v = 0.5 / 25.4 if "in/s" in head else 500.0
         rows = _rows(lambda a, b: f"{a},{b},{v!r}\n")

@@ -438,12 +438,15 @@ def _suffix_fits(role, suffix: str) -> bool:
 
 def _column_role(name: str, unit: str = ""):
     """(role, unit) of a header cell: :func:`_role`, or with the unit as the
-    name's last part ("time_ms", "force_mN", a velocity's two: "speed_um_s")
-    when the rest names a role (the last part is read as the unit before
-    the whole name is: "Time_ms" is a time in ms, not in s)."""
+    name's last part ("time_ms", "force_mN", a velocity's two: "speed_um_s",
+    "speed_mm_per_s"; a rotary rig's: "angle_deg", "speed_rpm", "speed_deg_s",
+    "torque_Nm") when the rest names a role (the last part is read as the
+    unit before the whole name is: "Time_ms" is a time in ms, not in s)."""
     key = name.strip().lower().replace(" ", "_").replace("-", "_")
     if not unit and "_" in name and not any(key in alts for alts in _NAMES.values()):   # ("tau_s" is a name)
         parts = name.split("_")
+        if len(parts) >= 4 and parts[-2].lower() == "per":
+            parts = parts[:-2] + parts[-1:]          # "mm_per_s": a velocity's two parts
         for k in (2, 1):
             if len(parts) <= k:
                 continue
