@@ -72,7 +72,7 @@ from lieng.diagnose.baseline import (Params, characteristic, identify, level_to_
                                      pr_like, run_slice, simulate, slip_friction, stick_start)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times, trig_modulation
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
-from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below
+from lieng.diagnose.segment import Cycles, Prepared, find_cycles, first_below, travel
 
 __all__ = ["TRAIN", "METRIC", "split", "folds", "window", "Judge", "candidates", "gain_folds", "unconfirmed",
            "level_trend"]
@@ -233,7 +233,7 @@ class Judge:
         self.D = c.amplitude(pr.x)
         per = c.periods(pr.t)
         self.P = float(np.mean(per)) if per.size else 1.0 / fn
-        k = np.flatnonzero(c.next_ok)
+        k = k_all = np.flatnonzero(c.next_ok)
         # a reciprocating record whose sticks are mostly at the reversals (fewer slips followed by another
         # in the same stroke than strokes) is also judged on each stroke's first slip, predicted from the
         # stroke's start (the model started from the record's state there, as :func:`.baseline.simulate`
@@ -279,9 +279,8 @@ class Judge:
         # hold adds time, not load (a slip that comes just as the drive stops, or just after the hold, is a
         # small difference of travel, where in time it was the whole hold); with a constant drive the two are
         # the same over their scales
-        self.trav = np.r_[0.0, np.cumsum(0.5 * (np.abs(pr.vd[1:]) + np.abs(pr.vd[:-1])) * np.diff(t))]
-        kk = np.flatnonzero(c.next_ok)
-        pt = np.diff(self.trav[np.c_[c.peak_i[kk], c.peak_i[kk + 1]]], axis=1).ravel() if kk.size else np.zeros(0)
+        self.trav = travel(np.abs(pr.vd), np.diff(t))
+        pt = np.diff(self.trav[np.c_[c.peak_i[k_all], c.peak_i[k_all + 1]]], axis=1).ravel() if k_all.size else np.zeros(0)
         self.PT = float(np.mean(pt)) if pt.size and np.mean(pt) > 0 else 0.0
         if not self.PT > 0:
             self.trav, self.PT = t - t[0], self.P          # (no drive to measure in: the clock)

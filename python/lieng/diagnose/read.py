@@ -462,6 +462,14 @@ def _column_role(name: str, unit: str = ""):
     return role, unit
 
 
+def _kind(name: str, unit: str = ""):
+    """What a header cell is read as: its role (:func:`_column_role`),
+    "angular" for a rotary rig's angle or angular speed, or None for a
+    column not read (a temperature, a comment)."""
+    role, u = _column_role(name, unit)
+    return role if role is not None else ("angular" if _rotational(u or unit) else None)
+
+
 def _scale(path, name, unit, table, what):
     u = _unit_key(unit)
     if u not in table:
@@ -591,10 +599,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     _check_highpass(highpass)
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
-                     missing="drop", unused=lambda name, unit: _column_role(name, unit)[0] is None
-                     and not _rotational(_column_role(name, unit)[1] or unit),
-                     sparse=lambda name, unit: _column_role(name, unit)[0] in ("position", "v0", "y", "N")
-                     or _rotational(_column_role(name, unit)[1] or unit))
+                     missing="drop", unused=lambda name, unit: _kind(name, unit) is None,
+                     sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular"))
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
     cols, units = {}, {}
     for name, role, unit in roles:
