@@ -33,6 +33,7 @@ VARIANTS = {
     "BOM and CRLF": "\ufefft [s],F [N]\r\n" + _rows(lambda a, b: f"{a},{b}\r\n"),
     "a separator at the end of each line": "t [s],F [N],\n" + _rows(lambda a, b: f"{a},{b},\n"),
     "Fx (tribometer axes)": "Time [s],Fx [N]\n" + _rows(lambda a, b: f"{a},{b}\n"),
+    "an abbreviated friction force, whitespace": "Time_s Ffric_N Fn_N\n" + _rows(lambda a, b: f"{a} {b} 20.0\n"),
     "time in ms": "t [ms],F [mN]\n" + _rows(lambda a, b: f"{1000 * a:.3f},{1000 * b:.4f}\n"),
     "a nanotribometer's nN": "t [s],F [nN]\n" + _rows(lambda a, b: f"{a},{1e9 * b:.1f}\n"),
     "a Greek mu for micro (U+03BC)": "t [s],F [\u03bcN]\n" + _rows(lambda a, b: f"{a},{1e6 * b:.1f}\n"),

@@ -61,6 +61,7 @@ _NAMES = {
     "y": ("y", "xn", "normal_disp", "normal_displacement"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity", "geschwindigkeit"),
     "F": ("f", "friction", "force", "friction_force", "ft", "ff", "f_f", "fr", "fx", "tangential", "tangential_force",
+          "ffric", "f_fric", "fric", "ffriction", "f_friction", "ftan", "f_tan", "ftang", "f_tang", "f_t", "fric_force",
           "lateral_force", "kraft", "reibkraft", "reibungskraft", "tangentialkraft", "tau", "stress", "shear_stress",
           "tau_s"),
     "mu": ("mu", "µ", "μ", "cof", "coefficient_of_friction", "friction_coefficient", "fnorm", "mu_k"),
