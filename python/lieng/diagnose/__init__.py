@@ -23,7 +23,7 @@ from lieng.io.outputs import finite_json as _finite
 from lieng.diagnose.baseline import (CALIBRATION_SAMPLES, Params, calibrate_fn, fit_baseline, pr_like,
                                      simulate, slip_friction)
 from lieng.diagnose.decide import (ALPHA, REPLICATE_BUDGET, RIVALS, decide, fn_needed, misfit, null_replicates,
-                                   rivals)
+                                   other_side, rivals)
 from lieng.diagnose.evidence import (CANDIDATES, MARGIN, ONE_SIDED, SLIDING, fn_readings, sliding_statistics,
                                      statistics)
 from lieng.diagnose.goodness import RIG, mean_above_zero, onset_ringing, rig_mode
@@ -584,6 +584,22 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             warnings.append(f"{k} reads {r['effect_size']:+.3g} (over the drop), but an error of fn within the stated "
                             f"+- {100 * u_fn:.3g} % can make up to {r['fn_band']:.3g}: not named; with fn known to "
                             f"+- {100 * un:.2g} % (--fn-uncertainty {un:.2g}) the same reading would be significant")
+    # a twin branch read below 0 (the decelerating branch below the accelerating one: a friction that lags the
+    # speed, frictional memory, a film's thermal lag) is tested as the side above is, at its Holm level, and
+    # reported, never named: a load that rises with x bends the slips alike (a branch below it named on every
+    # side cost more load records, named twin, than it found twins: README), and the slips alone cannot
+    # tell the two apart
+    tw = rows["twin_branch"]
+    below = other_side("twin_branch", st, se, null, tw, u_fn, null_alt) if "twin_branch" not in withheld else None
+    if below is not None and below[0] <= tw.get("holm_level", ALPHA) and abs(below[1]) >= MARGIN["twin_branch"]:
+        tw["below"] = {"p": float(below[0]), "effect_size": float(below[1])}
+        warnings.append(f"the slips read a decelerating branch {abs(below[1]):.3g} D below the accelerating one "
+                        f"(p = {below[0]:.2g}, beyond what an error of fn within +- {100 * u_fn:.3g} % makes): a "
+                        f"friction that lags the speed (frictional memory, a lubricant film's or a melt film's "
+                        f"thermal lag), or a load that rises with x, which bends the slips alike; not named (the "
+                        f"twin-branch test reads the branch above)"
+                        + ("; the record has no normal channel to tell the two apart" if pr.y is None else
+                           "; the normal channel's load evidence (load_variation) speaks to the other"))
     for k in CANDIDATES:
         r = rows[k]
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])

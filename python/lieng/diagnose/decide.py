@@ -56,7 +56,7 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "fn_sensitivity", "decide",
+__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side", "other_side", "fn_sensitivity", "decide",
            "misfit", "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
@@ -242,6 +242,37 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, r
 NOT_APPLICABLE = "does not apply to this record"
 
 
+def calibrate_side(k: str, side, S: float, se: float, v, e=None, u: float = 0.0, readings=None, alt=None) -> tuple:
+    """:func:`calibrate` for candidate ``k``: one-sided for an effect with a
+    direction (ONE_SIDED), two-sided otherwise, or one-sided on the given
+    ``side`` (+1, or -1: the statistic, its null, readings and alternative
+    null mirrored, and the results mirrored back): (m0, s0, d, its sd, z,
+    p, band, the alternative null's part of the band)."""
+    g = side or 1
+    one = k in ONE_SIDED or bool(side)
+    mirror = (lambda a: None if a is None else -np.asarray(a, float)) if g < 0 else (lambda a: a)
+    m0, s0, d, den, z, p, band = calibrate(g * S, se, mirror(v), one, e, u,
+                                           None if readings is None else tuple(mirror(readings)), mirror(alt))
+    rb = alt_shift(m0, s0, np.size(v), mirror(alt), one)
+    return g * m0, s0, g * d, den, z, p, band, rb
+
+
+def other_side(k: str, st: dict, se: dict, null: dict, row: dict, u_fn: float, null_alt=None):
+    """The opposite side of a one-sided candidate ``k`` tested as its own
+    side is (:func:`calibrate_side` with side -1): (p, effect size), or
+    None where the candidate was not read.  Reported, never named (a twin
+    branch's reading below 0, a decelerating branch below the accelerating
+    one, is what a load rising with x also makes of the slips)."""
+    v, e = null.get(k, np.array([])), null.get(FN_RATIO)
+    fin = np.isfinite(v)
+    if not row.get("applicable") or np.count_nonzero(fin) < 5 or not math.isfinite(st[k]):
+        return None
+    e = e[fin] if e is not None and e.size == fin.size else None
+    alt = (null_alt or {}).get(k)
+    out = calibrate_side(k, -1, float(st[k]), row.get("se") or 0.0, v[fin], e, u_fn, row.get("fn_readings"), alt)
+    return out[5], out[2]
+
+
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
            withheld=None, u_fn: float = 0.0, sizes=None, fn_readings=None, null_alt=None) -> dict:
     """The evidence table: for every candidate the statistic, the null mean
@@ -295,8 +326,7 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         err = float(se[k]) if math.isfinite(se[k]) else 0.0
         rd = (fn_readings or {}).get(k)
         alt = (null_alt or {}).get(k)
-        m0, s0, d, den, z, p, band = calibrate(S, err, v, k in ONE_SIDED, e, u_fn, rd, alt)
-        rb = alt_shift(m0, s0, v.size, alt, k in ONE_SIDED)
+        m0, s0, d, den, z, p, band, rb = calibrate_side(k, None, S, err, v, e, u_fn, rd, alt)
         rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=err, z=z, p=float(p), effect_size=d, applicable=True,
                        interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band - rb)
         if alt is not None:
@@ -400,8 +430,8 @@ def _given_rival(pr, k, other, other_ext, fn, u_fn, st, row, y_is_force, arcs, y
     v, e = v[fin], e[fin]
     if v.size < 5:
         return None
-    m0, s0, d, _, _, p, _ = calibrate(float(st[k]), row["se"] or 0.0, v, k in ONE_SIDED, e, u_fn,
-                                      row.get("fn_readings"))
+    m0, s0, d, _, _, p, _, _ = calibrate_side(k, None, float(st[k]), row["se"] or 0.0, v, e, u_fn,
+                                              row.get("fn_readings"))
     row["given_rival"] = {"rival": other, "null_mean": m0, "null_sd": s0, "effect_size": d, "p": p,
                           "replicates": n2}
     return p, (d if k in ONE_SIDED else abs(d))
