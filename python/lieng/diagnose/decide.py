@@ -242,6 +242,14 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, r
 NOT_APPLICABLE = "does not apply to this record"
 
 
+def _finite_null(null: dict, k: str) -> tuple:
+    """Candidate ``k``'s finite replicate values and their drawn fn errors
+    (None where the replicates carry none)."""
+    v, e = null.get(k, np.array([])), null.get(FN_RATIO)
+    fin = np.isfinite(v)
+    return v[fin], (e[fin] if e is not None and e.size == fin.size else None)
+
+
 def calibrate_side(k: str, side, S: float, se: float, v, e=None, u: float = 0.0, readings=None, alt=None) -> tuple:
     """:func:`calibrate` for candidate ``k``: one-sided for an effect with a
     direction (ONE_SIDED), two-sided otherwise, or one-sided on the given
@@ -263,13 +271,11 @@ def other_side(k: str, st: dict, se: dict, null: dict, row: dict, u_fn: float, n
     None where the candidate was not read.  Reported, never named (a twin
     branch's reading below 0, a decelerating branch below the accelerating
     one, is what a load rising with x also makes of the slips)."""
-    v, e = null.get(k, np.array([])), null.get(FN_RATIO)
-    fin = np.isfinite(v)
-    if not row.get("applicable") or np.count_nonzero(fin) < 5 or not math.isfinite(st[k]):
+    v, e = _finite_null(null, k)
+    if not row.get("applicable") or v.size < 5 or not math.isfinite(st[k]):
         return None
-    e = e[fin] if e is not None and e.size == fin.size else None
     alt = (null_alt or {}).get(k)
-    out = calibrate_side(k, -1, float(st[k]), row.get("se") or 0.0, v[fin], e, u_fn, row.get("fn_readings"), alt)
+    out = calibrate_side(k, -1, float(st[k]), row.get("se") or 0.0, v, e, u_fn, row.get("fn_readings"), alt)
     return out[5], out[2]
 
 
@@ -312,11 +318,7 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
             rows[k] = dict(statistic=float(st[k]), null_mean=0.0, null_sd=0.0, se=None, z=z, p=p,
                            effect_size=float(st[k]), applicable=True, calibration="permutation within the record")
             continue
-        v = null.get(k, np.array([]))
-        e = null.get(FN_RATIO)
-        fin = np.isfinite(v)
-        v = v[fin]
-        e = e[fin] if e is not None and e.size == fin.size else None
+        v, e = _finite_null(null, k)
         S = float(st[k])
         ok = (applicable is None or k in applicable) and v.size >= 5 and math.isfinite(S) and math.isfinite(se[k])
         if not ok:
@@ -425,9 +427,7 @@ def _given_rival(pr, k, other, other_ext, fn, u_fn, st, row, y_is_force, arcs, y
     null2, n2 = null_replicates(pr, other_ext, fn, u_fn, B=max(replicates // 2, 10), budget=0.5 * budget,
                                 seed=1, y_is_force=y_is_force, arcs=arcs,
                                 ylow=ylow if other_ext.load_k else None)
-    v, e = null2[k], null2[FN_RATIO]
-    fin = np.isfinite(v)
-    v, e = v[fin], e[fin]
+    v, e = _finite_null(null2, k)
     if v.size < 5:
         return None
     m0, s0, d, _, _, p, _, _ = calibrate_side(k, None, float(st[k]), row["se"] or 0.0, v, e, u_fn,
