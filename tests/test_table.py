@@ -75,6 +75,17 @@ VARIANTS = {
         + _rows(lambda a, b: f"{a};{b}\n".replace(".", ",")),
     "semicolons, a decimal comma, a unit row and a drive": "Time;Friction force;Actuator position\ns;N;mm\n"
         + _rows(lambda a, b: f"{a};{b};{a:.4f}\n".replace(".", ",")),
+    "German date-times under 'Datum/Zeit' (one name, not a name over its unit)": "Datum/Zeit;F [N]\n" + _rows(
+        lambda a, b: f"01.03.2024 09:22:{1 + a:06.3f};{b}\n".replace(".", ",").replace(",", ".", 2)),
+    "an American date-time with AM/PM": "Date/Time,F [N]\n" + _rows(lambda a, b: f"3/1/2024 1:22:{1 + a:06.3f} PM,{b}\n"),
+    "Origin's three header rows (names, units, comments)": "Time,Friction force\ns,N\n,run 3\n"
+        + _rows(lambda a, b: f"{a},{b}\n"),
+    "a fixed-width export, its names and units in two comment lines": "#         t           F\n#       [s]         [N]\n"
+        + _rows(lambda a, b: f"{a:16.8E}{b:16.8E}\n"),
+    "a force in N as the name's last part, beside the normal one (F_N, Fn_N)": "t_s,F_N,Fn_N\n"
+        + _rows(lambda a, b: f"{a},{b},20.0\n"),
+    "a testing machine's 'Load' beside its 'Normal Load'": '"Time","Load","Normal Load"\n"(s)","(N)","(N)"\n'
+        + _rows(lambda a, b: f'"{a}","{b}","20.0"\n'),
     "an LVDT on the slider beside the force (the slider's position, not the extension)":
         "Time (s)\tFt (N)\tLVDT slider (mm)\tActuator (mm)\n"
         + _rows(lambda a, b: f"{a}\t{b}\t{3 + a - b / K * 1e3:.7f}\t{a:.4f}\n"),
@@ -639,3 +650,110 @@ def test_a_seals_squeeze_is_the_normal_reading_and_a_column_not_read_is_said(tmp
                  + "".join(f"{T[i]},{F[i]},{1 + y[i]}\n" for i in range(200)))
     r = read_record(q, v0=1.0)
     assert r.y is None and any("not read" in n and "squeeze film thickness" in n for n in r.notes)
+
+
+def _reciprocating(n=4000, dt=1e-3, k=K, level=0.3):
+    """A reciprocating rig with dwells (1 mm/s each way for 0.8 s, 0.2 s
+    dwells) dragging a Coulomb slider on a spring: the stage's position
+    (mm) and the spring's force (N), which ramps through zero after each
+    reversal and keeps its level through the dwell."""
+    t = np.arange(n) * dt
+    ph = t % 2.0
+    v = np.where(ph < 0.8, 1.0, np.where(ph < 1.0, 0.0, np.where(ph < 1.8, -1.0, 0.0)))
+    pos = np.r_[0.0, np.cumsum(v[:-1]) * dt]
+    s, f = 0.0, np.empty(n)
+    for i in range(n):
+        f[i] = k * (pos[i] - s) * 1e-3
+        if abs(f[i]) > level:
+            f[i] = np.copysign(level, f[i])
+            s = pos[i] - f[i] / k * 1e3
+    return t, pos, f + 1e-4 * np.sin(np.arange(n))
+
+
+def test_a_tribometers_stage_axis_testing_machines_displacement_and_a_stroke_are_the_drive(tmp_path):
+    """A stage axis named by its letter ("Y (mm)" beside "Fx", "Fz": a UMT
+    export), an "Axial Displacement" beside an "Axial Force" and a
+    "Stroke" (an SRV's) are the drive's position, though the axis letter
+    and the displacement read as lengths of other roles: the stage goes
+    back and forth, so it is not the spring's extension (which follows the
+    force), and the forces are read (a stress test of unseen exports had
+    them refused: "no drive column")."""
+    t, pos, f = _reciprocating()
+    ref = read_record(_write(tmp_path, "ref.csv", "t [s],F [N],position [mm]", t, f, pos), stiffness=K)
+    heads = {"umt.csv": "Time (sec),Fx (N),Fz (N),COF,Y (mm),Z (mm)",
+             "mts.csv": "Time (s),Axial Force (N),Normal Force (N),Axial Displacement (mm)",
+             "srv.csv": "Time [s],Friction force [N],Load [N],Stroke [mm]",
+             "mat.csv": "t,Ff,Fn,x"}
+    for name, head in heads.items():
+        cols = {"umt.csv": (t, f, 20.0 + 0 * t, f / 20.0, pos, -2.0 + 0 * t), "mts.csv": (t, f, 20.0 + 0 * t, pos),
+                "srv.csv": (t, f, 20.0 + 0 * t, pos), "mat.csv": (t, f, 20.0 + 0 * t, pos)}[name]
+        r = read_record(_write(tmp_path, name, head, *cols), stiffness=K)
+        np.testing.assert_allclose(r.x, ref.x, atol=1e-9, err_msg=name)
+        np.testing.assert_allclose(r.vd, ref.vd, atol=1e-9, err_msg=name)
+        assert r.y is not None and np.mean(r.y) == pytest.approx(20.0), name
+    # the spring's extension itself beside the force (x = F / k) stays the extension
+    r = read_record(_write(tmp_path, "ext.csv", "t [s],F [N],x [mm],position [mm]", t, f, f / K * 1e3, pos), stiffness=K)
+    assert not any("drive's position" in n for n in r.notes)
+
+
+def _write(tmp_path, name, head, *cols):
+    p = tmp_path / name
+    p.write_text(head + "\n" + "".join(",".join(f"{float(c[i])!r}" for c in cols) + "\n" for i in range(len(cols[0]))))
+    return p
+
+
+def test_an_unsigned_friction_on_a_reversing_drive_is_signed_and_an_offset_one_loses_its_zero(tmp_path):
+    """A friction opposes the motion, so it changes side when the drive
+    reverses.  One written unsigned (|F|, an unsigned coefficient: a stress
+    test of unseen exports had it read as a friction that drifts and
+    differs by direction) falls to zero at each reversal: it is signed by
+    the drive's direction from each of those zeros and reads as the signed
+    record.  One that keeps its sign without falling to zero is a sensor's
+    offset: its zero is set between the two directions' levels and the
+    direction asymmetry is not read."""
+    t, pos, f = _reciprocating()
+    ref = read_record(_write(tmp_path, "ref.csv", "t [s],F [N],position [mm]", t, f, pos), stiffness=K)
+    r = read_record(_write(tmp_path, "abs.csv", "t [s],F [N],position [mm]", t, np.abs(f), pos), stiffness=K)
+    assert any("written unsigned" in n for n in r.notes) and not r.zero_unknown
+    close = np.abs(ref.x) > 0.01 * np.max(np.abs(ref.x))       # (the noise about each zero has lost its sign)
+    np.testing.assert_allclose(r.x[close], ref.x[close], atol=1e-9)
+    r = read_record(_write(tmp_path, "off.csv", "t [s],F [N],position [mm]", t, f + 1.0, pos), stiffness=K)
+    assert r.zero_unknown and any("offset" in n for n in r.notes)
+    np.testing.assert_allclose(r.x - ref.x, np.median(r.x - ref.x), atol=1e-6)
+    assert not any("unsigned" in n or "offset" in n for n in ref.notes) and not ref.zero_unknown
+
+
+def test_stamps_coarser_than_a_sampling_between_one_and_two_of_their_steps_are_spread_evenly(tmp_path):
+    """1 ms stamps on samples 1.245 ms apart step by 1 and 2 ms: evenly
+    spaced over the stamps' span (they had been resampled onto 1 ms as
+    uneven sampling); a row dropped from evenly stamped samples is still a
+    gap, resampled across."""
+    n, dt = 3000, 1.245e-3
+    tt = np.arange(n) * dt
+    p = tmp_path / "ms.csv"
+    p.write_text("t [s],F [N]\n" + "".join(f"{np.round(a, 3):.3f},{0.5 + 0.1 * np.sin(7 * a):.6f}\n" for a in tt))
+    r = read_record(p, v0=1.0, stiffness=K)
+    assert r.t.size == n and np.diff(r.t) == pytest.approx(dt, rel=1e-3)
+    assert any("step unevenly" in m for m in r.notes)
+
+
+def test_a_stiffness_in_any_force_over_any_length(tmp_path):
+    """--stiffness in gram- or kilogram-force per mm (a spring calibrated
+    with weights), or any force unit over any length unit."""
+    p = tmp_path / "f.csv"
+    p.write_text(PLAIN)
+    for unit, k in (("gf/mm", 9.80665), ("kgf/mm", 9806.65), ("daN/mm", 1e4), ("kgf/cm", 980.665)):
+        r = read_record(p, v0=1.0, stiffness=(1.0, unit))
+        assert r.stiffness == pytest.approx(k), unit
+    with pytest.raises(LiengInputError, match="force over a length"):
+        read_record(p, v0=1.0, stiffness=(1.0, "N/s"))
+
+
+def test_fnorm_beside_the_friction_force_is_the_normal_force(tmp_path):
+    """A unitless `Fnorm` alone is a coefficient (the friction normalised);
+    beside the friction force it is the normal force (the README's own
+    array names: `t`, `F`, `Fnorm`)."""
+    p = tmp_path / "f.npz"
+    np.savez(p, t=T, F=F, Fnorm=np.full(T.size, 20.0))
+    r = read_record(p, v0=1.0, stiffness=K)
+    assert r.y_is_force and np.mean(r.y) == pytest.approx(20.0)

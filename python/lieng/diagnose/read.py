@@ -68,7 +68,7 @@ _NAMES = {
     "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "f_n", "f_z", "normal_load", "normalkraft",
           "sigma", "sigma_n", "normal_stress", "fnorm", "f_norm"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg", "distance",
-                 "sliding_distance", "travel"),
+                 "sliding_distance", "travel", "xd", "x_d", "stroke"),
 }
 #: time column names whose plain numbers between 20000 and 80000 are a spreadsheet's serial dates (days)
 EXCEL_DAY_NAMES = ("date", "datetime", "date_time", "date/time", "timestamp", "time stamp", "date time")
@@ -183,7 +183,7 @@ _WORDS = (("mu", ("coefficient", "cof", "coeff", "coeficiente", "coefficiente", 
                  "drag", "f", "force", "friccion", "rozamiento", "attrito", "atrito", "tangenziale", "reibung",
                  "reibkraft", "kraft", "fuerza", "forza", "forca")),
           ("position", ("position", "stage", "distance", "travel", "track", "encoder", "actuator", "crosshead",
-                        "posicion", "posizione", "posicao", "weg")),
+                        "posicion", "posizione", "posicao", "weg", "stroke", "hub")),
           ("v0", ("velocity", "speed", "vitesse", "velocidad", "velocita", "velocidade", "geschwindigkeit")),
           ("t", ("time", "temps", "tiempo", "tempo", "zeit")),
           ("x", ("displacement", "extension", "deplacement", "deflection", "laser", "lds", "lvdt", "dvrt",
@@ -332,13 +332,15 @@ def _with_units(stiffness, v0, rotary, notes):
         val, unit = stiffness
         num, _, den = unit.rpartition("/")
         k = _STIFFNESS.get(_unit_key(unit)) if not rotary else None
+        if k is None and not rotary and _unit_key(num) in _FORCE and _unit_key(den) in _LENGTH and num and den:
+            k = _FORCE[_unit_key(num)] / (1e-3 * _LENGTH[_unit_key(den)])   # any force over any length: gf/mm
         if rotary and torque_scale(num) is not None and _unit_key(den) in _ANGLE:
             k = torque_scale(num) * _ANGLE[ru] / _ANGLE[_unit_key(den)]
         if k is None:
             _fail(f"--stiffness {val:g} {unit}: " + (f"a rotary record's stiffness is a torque per angle (N·m/rad, "
                                                        f"mN·m/deg)" if rotary else
-                                                       f"unit not understood for a linear stiffness (N/m, N/mm, "
-                                                       f"kN/m, N/um, lbf/in)"))
+                                                       f"unit not understood for a linear stiffness (a force "
+                                                       f"over a length: N/m, N/mm, kN/m, N/um, gf/mm, lbf/in)"))
         notes.append(f"--stiffness {val:g} {unit}: {val * k:.6g} " + (f"N·m/{ru}" if rotary else "N/m"))
         stiffness = val * k
     if isinstance(v0, tuple):
@@ -611,6 +613,14 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                   f"the {role} channel?)")
         if role and role not in cols:
             cols[role], units[role] = (name, tab.columns[name]), unit
+    pair_note = _friction_among_normals(roles, tab, cols, units)
+    if "mu" in cols and {"F", "x"} & cols.keys() and "N" not in cols and \
+            cols["mu"][0].strip().lower().replace(" ", "_") in _NAMES["N"]:
+        # "Fnorm" unitless reads as a coefficient (F normalised), but beside the friction force it is the
+        # normal force (the coefficient would be the one over the other)
+        cols["N"], units["N"] = cols.pop("mu"), units.pop("mu")
+        pair_note = (f"column {cols['N'][0]} beside the friction force {(cols.get('F') or cols['x'])[0]}: read as "
+                     f"the normal force")
     pull_note = None
     if "N" in cols and not {"F", "mu"} & cols.keys() and cols["N"][0].strip().lower() == "load" and \
             ("x" not in cols or _one_way(cols["x"][1])):
@@ -651,6 +661,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         cols["position"], units["position"] = cols.pop("x"), units.pop("x")
         drive_note = (f"column {cols['position'][0]} moves one way only (a stage's travel, not a spring's extension "
                       f"beside the force {cols['F'][0]}): read as the drive's position")
+    elif "F" in cols and "position" not in cols and "v0" not in cols:
+        drive_note = _stage_beside_force(roles, tab, cols, units, None if rotary else stiffness)
     if rate is not None and not (math.isfinite(rate) and 1.0 / DT_RANGE[1] <= rate <= 1.0 / DT_RANGE[0]):
         _fail(f"--rate {rate:g}: the sampling rate must be a number from {1.0 / DT_RANGE[1]:.3g} to "
               f"{1.0 / DT_RANGE[0]:.3g} Hz")
@@ -730,17 +742,23 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             t, cols, d, bad = take(keep)
             n = t.size
     stamps_note = None
-    stamped = _stamps_quantised(t) if bad.size and np.all(d[bad] == 0) else None
+    # stamps written coarser than the sampling: they repeat (1 ms stamps at 2 kHz), or, sampled between one
+    # and two of their steps apart, step by one or two (1 ms stamps every 1.245 ms)
+    uneven = not bad.size and d.size >= 2 and float(np.max(d)) > 1.01 * float(np.min(d))
+    stamped = _stamps_quantised(t) if bad.size and np.all(d[bad] == 0) else \
+        _stamps_quantised(t, between=True) if uneven else None
     if stamped is not None:
         # (a line of positive slope: the times it gives increase, nothing is left bad)
         (t, q), bad = stamped, bad[:0]
-        stamps_note = (f"the time stamps repeat (written to {q:.3g} s, coarser than the sampling): the samples are "
-                       f"taken as evenly spaced, {(t[-1] - t[0]) / (t.size - 1):.4g} s apart, over the stamps' span")
+        stamps_note = (f"the time stamps {'step unevenly' if uneven else 'repeat'} (written to {q:.3g} s, coarser than "
+                       f"the sampling): the samples are taken as evenly spaced, {(t[-1] - t[0]) / (t.size - 1):.4g} s "
+                       f"apart, over the stamps' span")
     if bad.size:
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (rotary["note"] if rotary else None, *given, pull_note, notes_pair, slider_note, mu_note, drive_note,
+    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, pull_note, notes_pair, slider_note, mu_note,
+                         drive_note,
                          serial_note, runs_note, dup_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
@@ -822,6 +840,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if pair is not None or slider:
         # an extension from two positions: its zero is where their origins put it
         x, zero_unknown = _zero_between_directions(x, vd, notes)
+    elif recorded:
+        # a friction that keeps its sign though the drive reverses: written unsigned, or off its zero
+        x, zero_unknown = _one_sided(x, vd, notes)
     # a column the record carries but nothing reads (its name gives no role, or another column took it) is
     # said: a seal rig's "squeeze [mm]" was dropped in silence before the word was known
     used = {c[0] for c in cols.values()}
@@ -968,20 +989,178 @@ def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> tuple
     return drive - (x - x[0]), True
 
 
-def _zero_between_directions(x, vd, notes: list) -> tuple:
+def _moving(vd):
+    """The drive's direction where it moves clearly (+1, -1; 0 where it stands or creeps: under a quarter of
+    its speed on the fastest tenth of the samples, a dwell's differentiated noise)."""
+    thr = 0.25 * float(np.quantile(np.abs(vd), 0.9))
+    return np.where(np.abs(vd) > thr, np.sign(vd), 0.0) if thr > 0 else np.zeros(vd.size)
+
+
+def _both_ways(vd) -> bool:
+    """Whether the drive goes each way (clearly: :func:`_moving`) on a tenth of the samples or more."""
+    m = _moving(vd)
+    return min(np.count_nonzero(m > 0), np.count_nonzero(m < 0)) >= 0.1 * vd.size
+
+
+def _zero_between_directions(x, vd, notes: list, why: str | None = None) -> tuple:
     """An extension read from two positions (the stage's less the
     slider's) on a drive that goes both ways: its zero, which the positions'
     origins do not give, set midway between its median levels in the two
     directions (the friction as large either way), and said; (x, True).  On
-    a drive one way, (x, False) as it is."""
-    fwd, bwd = vd > 0, vd < 0
-    if min(np.count_nonzero(fwd), np.count_nonzero(bwd)) < 0.1 * x.size:
+    a drive one way, (x, False) as it is.  ``why`` says why the zero is
+    not in the record (by default: two positions' origins)."""
+    if not _both_ways(vd):
         return x, False
-    mid = 0.5 * (float(np.median(x[fwd])) + float(np.median(x[bwd])))
-    notes.append(f"the drive goes both ways and the extension's zero is not in the positions: set midway between "
-                 f"its levels in the two directions ({mid:.4g} mm from the positions' difference); the two "
-                 f"directions' friction levels cannot then be told apart (direction_asymmetry is not read)")
+    m = _moving(vd)
+    mid = 0.5 * (float(np.median(x[m > 0])) + float(np.median(x[m < 0])))
+    why = why or "the drive goes both ways and the extension's zero is not in the positions"
+    notes.append(f"{why}: set midway between its levels in the two directions ({mid:.4g} mm from the record's "
+                 f"zero); the two directions' friction levels cannot then be told apart (direction_asymmetry is "
+                 f"not read)")
     return x - mid, True
+
+
+#: at a reversal an unsigned friction (|F|, |mu|) falls to within this share of the smaller of the two
+#: directions' levels before it rises again; a signed one off its zero passes from one level to the other
+UNSIGNED_DIP = 0.25
+#: the share of the reversals that must show that dip for the record to be read as unsigned
+UNSIGNED_SHARE = 0.75
+
+
+def _one_sided(x, vd, notes: list) -> tuple:
+    """A friction that keeps its sign on a drive that goes both ways (a
+    friction opposes the motion: it changes side when the drive reverses).
+    Where it dips to about zero at each reversal (UNSIGNED_DIP at
+    UNSIGNED_SHARE of them) it was written unsigned (|F|, an unsigned
+    coefficient): signed by the drive's direction, changing at each dip's
+    lowest point (where the spring passes through its zero), and said;
+    (x, False).  Otherwise it is a signed force off its zero (a sensor's
+    offset): :func:`_zero_between_directions`, (x, True).  A record whose
+    friction changes side with the drive, or whose drive goes one way, is
+    returned as it is, (x, False)."""
+    if not _both_ways(vd):
+        return x, False
+    mv = _moving(vd)
+    lf, lb = float(np.median(x[mv > 0])), float(np.median(x[mv < 0]))
+    if lf * lb <= 0:
+        return x, False
+    g = math.copysign(1.0, lf)
+    a = g * x                                   # the magnitude, positive both ways
+    level = min(abs(lf), abs(lb))
+    moving = np.flatnonzero(mv != 0)
+    turns = np.flatnonzero(np.diff(mv[moving]) != 0)
+    if turns.size == 0:
+        return x, False
+    # each reversal's window: from the old direction's last clear move (the spring, stuck through a dwell,
+    # unloads once the drive comes back) to halfway on to the next reversal
+    last = [int(moving[k]) for k in turns]
+    ends = [(p + int(moving[k + 1])) // 2 for p, k in zip(last[1:], turns[1:])] + [x.size]
+    dips = []
+    for lo, hi in zip(last, ends):
+        i = lo + int(np.argmin(a[lo:hi]))
+        dips.append((i, float(a[i]) < UNSIGNED_DIP * level))
+    if np.mean([d for _, d in dips]) >= UNSIGNED_SHARE:
+        sign = np.empty(x.size)
+        cur, start = float(mv[moving[0]]), 0
+        for i, _ in dips:
+            sign[start:i] = cur
+            cur, start = -cur, i
+        sign[start:] = cur
+        notes.append(f"the friction keeps its sign though the drive reverses ({len(dips)} times) and falls to about "
+                     f"zero at each reversal: written unsigned (|F| or an unsigned coefficient); signed by the "
+                     f"drive's direction, changing where it passes through zero")
+        return a * sign, False
+    return _zero_between_directions(x, vd, notes, "the friction keeps its sign though the drive reverses, and "
+                                                  "passes from one level to the other at each reversal (a force "
+                                                  "opposes the motion either way): a sensor's offset; its zero")
+
+
+#: a length column beside a force is the spring's extension (x = F / k, two readings of one spring) only
+#: when their correlation is at least this, and, with the stiffness given, its swing is within this
+#: factor of F / k's; a stage's position is neither (a reciprocating stage's with dwells correlates 0.8
+#: with the friction, which keeps its sign through each dwell)
+FOLLOWS_FORCE = 0.9
+FOLLOWS_SWING = 3.0
+
+
+def _follows(x, F, stiffness=None) -> bool:
+    """Whether the length ``x`` (mm) follows the force ``F`` (N) as the
+    spring's extension does (FOLLOWS_FORCE, FOLLOWS_SWING; ``stiffness`` in
+    N/m or None; finite samples only)."""
+    ok = np.isfinite(x) & np.isfinite(F)
+    if np.count_nonzero(ok) < 20 or not (np.ptp(x[ok]) > 0 and np.ptp(F[ok]) > 0):
+        return False
+    if stiffness:
+        r = float(np.ptp(x[ok])) / (1e3 * float(np.ptp(F[ok])) / stiffness)
+        if not 1.0 / FOLLOWS_SWING <= r <= FOLLOWS_SWING:
+            return False
+    return abs(float(np.corrcoef(x[ok], F[ok])[0, 1])) >= FOLLOWS_FORCE
+
+
+def _friction_among_normals(roles, tab, cols, units) -> str | None:
+    """A record with no friction column but two read as normal forces, one of
+    them the friction by its name: a force named with its unit as the last
+    part ("F_N" beside "Fn_N": F in N), or a plain "Load" or "Force" beside
+    one named normal (a testing machine's "Load" beside its "Normal Load").
+    Moves it to F (``cols``, ``units`` in place) and says so; None when
+    there is no such pair."""
+    if {"F", "mu"} & cols.keys():
+        return None
+    normals = [(n, u) for n, r, u in roles if r == "N"]
+    if len(normals) < 2:
+        return None
+
+    def friction_unit(n, u):
+        if not u and "_" in n:
+            stem, suf = n.rsplit("_", 1)
+            if _unit_key(suf) in _FORCE and _role(stem, suf) == "F":
+                return suf                   # "F_N": F in newtons
+        if n.strip().lower() in ("load", "force") and any("normal" in _words(m) for m, _ in normals if m != n):
+            return u                         # "Load" beside "Normal Load"
+        return None
+
+    hits = [(n, friction_unit(n, u)) for n, u in normals]
+    hits = [h for h in hits if h[1] is not None]
+    if len(hits) != 1:
+        return None
+    name, unit = hits[0]
+    other, ou = next((m, u) for m, u in normals if m != name)
+    cols["F"], units["F"] = (name, tab.columns[name]), unit
+    cols["N"], units["N"] = (other, tab.columns[other]), ou
+    return f"column {name} is the friction force and {other} the normal one (both named as forces)"
+
+
+def _stage_beside_force(roles, tab, cols, units, stiffness=None) -> str | None:
+    """A force record's drive position in a length column read as something
+    else: a displacement that does not follow the force (it is not the
+    spring's extension, F / k: a testing machine's "Extension", an "Axial
+    Displacement", a stage's "x" beside "Ff"), or a bare axis letter ("Y
+    (mm)", a tribometer's stage axis) beside a normal force or coefficient.
+    Moves it to ``position`` (in place) and says so; None when there is
+    none.  ``stiffness`` (N/m), when given, is used to tell them apart
+    (:func:`_follows`)."""
+    F = tab.columns[cols["F"][0]]
+    scaled = lambda n, u: tab.columns[n] * _LENGTH.get(_unit_key(u), 1.0)
+    if "x" in cols and not _follows(scaled(cols["x"][0], units["x"]), F * _FORCE.get(_unit_key(units["F"]), 1.0),
+                                    stiffness):
+        cols["position"], units["position"] = cols.pop("x"), units.pop("x")
+        return (f"column {cols['position'][0]} does not follow the force {cols['F'][0]} (the spring's extension "
+                f"would): read as the drive's position")
+    if "N" not in cols and "mu" not in cols:
+        return None
+    axes = [(n, u) for n, r, u in roles if r in ("x", "y") and n.strip().lower() in ("x", "y")
+            and _unit_key(u) in _LENGTH and u and not _follows(scaled(n, u), F * _FORCE.get(_unit_key(units["F"]), 1.0),
+                                                               stiffness)]
+    if not axes:
+        return None
+    name, unit = max(axes, key=lambda a: float(np.nanmax(tab.columns[a[0]]) - np.nanmin(tab.columns[a[0]])))
+    if not np.nanmax(tab.columns[name]) > np.nanmin(tab.columns[name]):
+        return None
+    for role in ("x", "y"):
+        if role in cols and cols[role][0] == name:
+            cols.pop(role), units.pop(role)
+    cols["position"], units["position"] = (name, tab.columns[name]), unit
+    return f"column {name} (a stage axis in {unit}, beside the forces) is read as the drive's position"
 
 
 def _one_way(x) -> bool:
@@ -998,21 +1177,30 @@ def _one_way(x) -> bool:
     return net > 0 and float(np.sum(np.abs(np.diff(xs)))) <= 1.25 * net
 
 
-def _stamps_quantised(t):
+def _stamps_quantised(t, between: bool = False):
     """Time stamps written coarser than the sampling (1 ms stamps at 2 kHz,
-    whole seconds at 100 Hz): they repeat, never go back, and stay within one
+    whole seconds at 100 Hz; 1 ms stamps every 1.245 ms): they repeat or
+    step by whole numbers of their step, never go back, and stay within one
     stamp step of a straight line in the row number.  Returns the evenly
     spaced times that line gives and the step, or None when the stamps are
-    not that (gaps, a clock that stops)."""
+    not that (gaps, a clock that stops).  With ``between`` (stamps that
+    never repeat) the mean step must also lie clearly between two whole
+    numbers of stamp steps (1.245 ms on 1 ms stamps): a whole number (a
+    row dropped here and there from evenly stamped samples) is gaps."""
     d = np.diff(t)
     pos = d[d > 0]
     if pos.size < 2 or np.any(d < 0):
         return None
-    q = float(np.min(pos))
+    # the stamps' step: the least step, or the least difference of two steps (0.1 ms stamps every 1.76 ms
+    # step by 1.7 and 1.8 ms)
+    u = np.unique(np.round(pos, 12))
+    q = float(min(u[0], np.min(np.diff(u)))) if u.size > 1 else float(u[0])
     i = np.arange(t.size, dtype=float)
     slope, icpt = np.polyfit(i, t, 1)
     res = t - (icpt + slope * i)
     if not (slope > 0 and float(np.max(np.abs(res))) <= 1.01 * q and np.all(np.abs(pos / q - np.round(pos / q)) < 0.01)):
+        return None
+    if between and abs(slope / q - round(slope / q)) < 0.02:
         return None
     return icpt + slope * i, q
 

@@ -59,6 +59,8 @@ class Table:
         self.segments = 1
         #: variables of an array file (.mat, .npz) not read as columns
         self.passed_over = []
+        #: the line of a row of comments under the units (Origin's third header row), passed over
+        self.comments_row = None
         #: columns logged on fewer rows, filled linearly between their values:
         #: name -> (rows with a value, rows)
         self.filled = {}
@@ -80,7 +82,12 @@ class Table:
         elif self.encoding != "utf-8":
             out.append(f"the file is not UTF-8: read as {self.encoding} text")
         if self.comment_header:
-            out.append("the header is the comment line above the numbers (as numpy.savetxt writes it)")
+            out.append("the header is the comment line above the numbers (as numpy.savetxt writes it)"
+                       if self.comment_header is True else
+                       "the header and its units are the two comment lines above the numbers")
+        if self.comments_row:
+            out.append(f"line {self.comments_row}, a row of comments under the units (as Origin writes it), "
+                       f"passed over")
         if self.repeated:
             out.append(f"the header row repeats {self.repeated} time{'s' if self.repeated > 1 else ''} between the "
                        f"rows (runs appended to one file, or a header per page): passed over")
@@ -113,13 +120,19 @@ def _unquote(cell: str) -> str:
     return c
 
 
+#: the second word of a "date/time" header cell in the languages a lab writes it ("Date/Time",
+#: "Datum/Zeit", "Date/Heure", "Fecha/Hora"): one name, not a name and its unit
+_TIME_WORDS = ("time", "zeit", "uhrzeit", "heure", "hora", "ora", "tempo")
+
+
 def _name_unit(cell: str) -> tuple:
-    """A header cell's name and unit: ``Time [s]``, ``F (mN)``, ``time/s``."""
+    """A header cell's name and unit: ``Time [s]``, ``F (mN)``, ``time/s``
+    (``Date/Time``, ``Datum/Zeit`` are one name)."""
     m = _UNIT.match(cell)
     if m:
         return m.group(1), m.group(2)
     m = _SLASH.match(cell)
-    if m:
+    if m and m.group(2).strip().lower() not in _TIME_WORDS:
         return m.group(1), m.group(2)
     return cell, ""
 
@@ -127,30 +140,49 @@ def _name_unit(cell: str) -> tuple:
 #: a logger's date-time stamp: ISO 8601 date, a blank or T, the time of day to any fraction of a second
 _DATETIME = re.compile(r"^\s*(\d{4}-\d{2}-\d{2})[ T](\d{2}:\d{2}:\d{2}(?:[.,]\d+)?)\s*$")
 #: a day-first date as Europe writes it (05/03/2024, 05.03.2024; month-first when the second number
-#: exceeds 12), then the time of day
-_DMY = re.compile(r"^\s*(\d{1,2})([./])(\d{1,2})\2(\d{4})[ T](\d{1,2}:\d{2}:\d{2}(?:[.,]\d+)?)\s*$")
-#: the time of day alone (a logger's clock: 14:02:03.125)
-_CLOCK = re.compile(r"^\s*(\d{1,2}):(\d{2}):(\d{2}(?:[.,]\d+)?)\s*$")
+#: exceeds 12), then the time of day; with AM or PM after it, an American month-first date
+#: (3/5/2024 12:59:50.000 PM; day-first when the first number exceeds 12)
+_DMY = re.compile(r"^\s*(\d{1,2})([./])(\d{1,2})\2(\d{4})[ T](\d{1,2}:\d{2}:\d{2}(?:[.,]\d+)?)"
+                  r"(?:\s*([AaPp])\.?[Mm]\.?)?\s*$")
+#: the time of day alone (a logger's clock: 14:02:03.125; 2:02:03.125 PM)
+_CLOCK = re.compile(r"^\s*(\d{1,2}):(\d{2}):(\d{2}(?:[.,]\d+)?)(?:\s*([AaPp])\.?[Mm]\.?)?\s*$")
+
+
+def _hour(h: int, ampm) -> int | None:
+    """The hour of a 12-hour clock's reading (``ampm`` "a" or "p", any case) on a 24-hour one; None
+    when it is no hour of it (as is 13 PM)."""
+    if not ampm:
+        return h
+    if not 1 <= h <= 12:
+        return None
+    return h % 12 + (12 if ampm.lower() == "p" else 0)
 _DAY_NS = 86_400 * 10 ** 9
 
 
 def _datetime_ns(cell: str):
     """A date-time cell as integer nanoseconds, or None when it is not one:
     an ISO 8601 date-time, a day-first date and time (dd/mm/yyyy or
-    dd.mm.yyyy), or the time of day alone (nanoseconds from midnight;
-    :func:`read_table` adds a day where the clock passes midnight)."""
+    dd.mm.yyyy; with AM or PM, an American m/d/yyyy and a 12-hour clock),
+    or the time of day alone (nanoseconds from midnight; :func:`read_table`
+    adds a day where the clock passes midnight)."""
     m = _DATETIME.match(cell)
     if m:
         day, clock = m.group(1), m.group(2)
     elif (m := _DMY.match(cell)):
         a, b = int(m.group(1)), int(m.group(3))
-        d, mo = (b, a) if b > 12 >= a else (a, b)
-        day, clock = f"{m.group(4)}-{mo:02d}-{d:02d}", m.group(5)
-        clock = clock if clock.index(":") == 2 else "0" + clock
+        if m.group(6):
+            mo, d = (b, a) if a > 12 >= b else (a, b)
+        else:
+            d, mo = (b, a) if b > 12 >= a else (a, b)
+        hh, rest = m.group(5).split(":", 1)
+        h = _hour(int(hh), m.group(6))
+        if h is None:
+            return None
+        day, clock = f"{m.group(4)}-{mo:02d}-{d:02d}", f"{h:02d}:{rest}"
     elif (m := _CLOCK.match(cell)):
-        h, mi = int(m.group(1)), int(m.group(2))
+        h, mi = _hour(int(m.group(1)), m.group(4)), int(m.group(2))
         sec = float(m.group(3).replace(",", "."))
-        if h > 23 or mi > 59 or not sec < 61.0:
+        if h is None or h > 23 or mi > 59 or not sec < 61.0:
             return None
         return (h * 3600 + mi * 60) * 10 ** 9 + int(round(sec * 1e9))
     else:
@@ -341,6 +373,48 @@ def _lvm_names(names, units, fields):
     return out_n, out_u
 
 
+def _row_cells(row: str) -> list:
+    """A header-like row's cells, split as it is written (a whitespace table's has no comma, semicolon or
+    TAB), unquoted (empty ones kept)."""
+    sep = r"[,;\t]" if re.search(r"[,;\t]", row) else r"\s+"
+    return [_unquote(c) for c in re.split(sep, row.strip())]
+
+
+def _units_row(row: str, width: int) -> bool:
+    """Whether ``row`` is a row of units alone for a table ``width`` columns wide: as many cells (or one
+    fewer, a trailing separator's), each short and a single word ("mm/s", "[N]", "N·m"), none a number, most
+    filled."""
+    cells = _row_cells(row)
+    while len(cells) > 1 and not cells[-1]:
+        cells.pop()
+    if not (width - 1 <= len(cells) <= width) or _numeric_cells(row):
+        return False
+    if sum(bool(c) for c in cells) < max(1, width - 2) or any(len(c) > 12 or len(c.split()) > 1 for c in cells):
+        return False
+    for c in cells:
+        try:
+            _number(c.strip("[]() "), True)
+            return False
+        except ValueError:
+            pass
+    return True
+
+
+def _text_row(row: str, width: int) -> bool:
+    """Whether ``row`` is a row of words for a table ``width`` columns wide (no cell a number, at most as many
+    cells): a header's names or a comments row under them."""
+    cells = _row_cells(row)
+    if len(cells) > width:
+        return False
+    for c in cells:
+        try:
+            _number(c, True)
+            return False
+        except ValueError:
+            pass
+    return True
+
+
 def _header_after_preamble(rows, content) -> int:
     """The index into ``content`` of the header row: the last text row
     before the first two rows of as many numbers (the row above a row
@@ -358,6 +432,11 @@ def _header_after_preamble(rows, content) -> int:
     if i + 1 < len(width):
         width[i] = max(width[i], width[i + 1])
     h = i - 1
+    if h >= 2 and _units_row(rows[content[h - 1]], width[i]) and not _units_row(rows[content[h]], width[i]) \
+            and _text_row(rows[content[h]], width[i]) and _text_row(rows[content[h - 2]], width[i]):
+        # Origin's three header rows: the long names, the units and the comments ("", "run 3", "stage
+        # encoder"): the header is the first (read_table reads the units under it and passes the comments)
+        return h - 2
     above = rows[content[h]]
     cells = [c for c in re.split(r"[,;\t]|\s+", above.strip()) if c]
     if h >= 1 and all(len(_unquote(c)) <= 12 for c in cells) and len(cells) <= width[i]:
@@ -455,7 +534,7 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     k1 = next((k for k in range(k0 + 1, len(rows)) if rows[k].strip() and not _is_comment(rows[k])), None)
     first = None if k1 is None else rows[k1]
     header_row = rows[k0]
-    from_comment = False
+    from_comment, units_c = False, None
     if skipped == 0 and _numeric_cells(rows[k0]):
         # no header above the numbers: the comment line just above them, when it names as many columns
         # (numpy.savetxt writes its header as "# t [s],F [N]")
@@ -466,6 +545,14 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
             if len([c for c in cells_c if c]) == _numeric_cells(rows[k0]) and not _numeric_cells(cand):
                 header_row, from_comment = cand, True
                 first, k1, k0 = rows[k0], k0, k0 - 1
+                # a comment line of units alone ("#  [s]  [N]"): the names are the comment line above it
+                ka = next((k for k in range(k0 - 1, -1, -1) if rows[k].strip()), None)
+                names_c = rows[ka].lstrip().lstrip("#%/").strip() if ka is not None and _is_comment(rows[ka]) \
+                    else None
+                if names_c and _units_row(cand, len(cells_c)) and _text_row(names_c, len(cells_c)) and \
+                        len([c for c in _split_header(names_c, first)[1] if c]) == len(cells_c):
+                    header_row, from_comment = names_c, "units"
+                    units_c = [c.strip("[]() ") for c in cells_c]
     sep, head = _split_header(header_row, first)
     head = [_unquote(h) for h in head]
     while len(head) > 1 and not head[-1]:
@@ -475,11 +562,14 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         nm, un = _name_unit(h)
         names.append(nm)
         units.append(un)
+    if units_c is not None and not any(units) and len(units_c) == len(names):
+        units = units_c
     if lvm is not None:
         names, units = _lvm_names(names, units, lvm[1])
     ncol = len(names)
     comma = sep != ","
     start = k0 + 1
+    comments_row = None
     if first is not None:
         # a row of units alone under the header ("s,N,N"): no cell of it is a number
         cells = [_unquote(c) for c in (first.split(sep) if sep else first.split())][:ncol]
@@ -493,6 +583,11 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
                 if not any(units):
                     units = [c.strip("[]() ") for c in cells]
                     start = k1 + 1
+                    # Origin's comments row under the units (its first cell often empty): no number in it
+                    k2 = next((k for k in range(start, len(rows)) if rows[k].strip() and not _is_comment(rows[k])),
+                              None)
+                    if k2 is not None and not _data_cells(rows[k2])[1] and _text_row(rows[k2], ncol):
+                        start, comments_row = k2 + 1, k2 + 1
     skip = [bool(unused and unused(n, u)) for n, u in zip(names, units)]
     thin = [bool(missing == "drop" and sparse and not skip[j] and sparse(n, u))
             for j, (n, u) in enumerate(zip(names, units))]
@@ -579,6 +674,7 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     tab = Table(path, names, units, {n: arr[:, j] for j, n in enumerate(names)}, lines)
     tab.dropped = dropped
     tab.preamble = skipped
+    tab.comments_row = comments_row
     if lvm is not None:
         tab.segments = lvm[3]
     for c in np.flatnonzero(thin):
