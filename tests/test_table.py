@@ -757,3 +757,15 @@ def test_fnorm_beside_the_friction_force_is_the_normal_force(tmp_path):
     np.savez(p, t=T, F=F, Fnorm=np.full(T.size, 20.0))
     r = read_record(p, v0=1.0, stiffness=K)
     assert r.y_is_force and np.mean(r.y) == pytest.approx(20.0)
+
+
+def test_a_refusal_says_how_each_column_was_read(tmp_path):
+    """A record refused for a missing role names what each column was read
+    as and which were not read (the stress test's refusals had hidden a
+    column taken for another role, or passed over, behind "no drive
+    column")."""
+    p = tmp_path / "nodrive.csv"
+    p.write_text("Time (s),Fx (N),Fz (N),Q (mm)\n" + "".join(f"{a},{b},10,{a}\n" for a, b in zip(T, F)))
+    with pytest.raises(LiengInputError, match=r"no drive column .*read: Time as the time, Fx as the friction force, "
+                                              r"Fz as the normal force; not read: Q\)"):
+        read_record(p, stiffness=K)

@@ -674,11 +674,13 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             f"vectors of the record's length)"
             if tab.passed_over else "")
     if "t" not in cols and rate is None:
-        _fail(f"{path}: no time column (t or time) {where}{over}: add one, or give --rate (the sampling rate, Hz)")
+        _fail(f"{path}: no time column (t or time) {where}{over}{_as_read(roles, cols)}: add one, or give --rate "
+              f"(the sampling rate, Hz)")
     mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
         else None
     if "x" not in cols and "F" not in cols:
-        _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column {where}{over}")
+        _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column {where}{over}"
+              f"{_as_read(roles, cols)}")
     n = len(tab)
     if n < MIN_SAMPLES:
         _fail(f"{path}: {n} samples: too short for stick-slip analysis (at least {MIN_SAMPLES})")
@@ -805,7 +807,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         if angle is not None:
             _fail(f"{path}: column {angle} is an angle (a rotating drive's): the drive velocity is needed as a "
                   f"sliding speed: give --v0 (mm/s: the angular speed times the track radius)")
-        _fail(f"{path}: no drive column (v0 or position) and no --v0: the drive velocity is needed")
+        _fail(f"{path}: no drive column (v0 or position){_as_read(roles, cols)} and no --v0: the drive velocity is "
+              f"needed (give --v0, or name the stage's column 'position')")
     elif angle is not None:
         notes.append(f"column {angle} (an angle: a rotating drive's) is not read: the drive is --v0, the sliding "
                      f"speed at the track")
@@ -994,6 +997,22 @@ def _moving(vd):
     its speed on the fastest tenth of the samples, a dwell's differentiated noise)."""
     thr = 0.25 * float(np.quantile(np.abs(vd), 0.9))
     return np.where(np.abs(vd) > thr, np.sign(vd), 0.0) if thr > 0 else np.zeros(vd.size)
+
+
+#: the roles' names in the messages
+_ROLE_WORDS = {"t": "the time", "x": "the spring's extension", "y": "a normal reading", "v0": "the drive velocity",
+               "F": "the friction force", "mu": "a friction coefficient", "N": "the normal force",
+               "position": "the drive's position"}
+
+
+def _as_read(roles, cols) -> str:
+    """How each column of the header was read, for a refusal's message: " (read: Time as the time, Fx as the
+    friction force; not read: Y, Z)"; empty for a table of no columns."""
+    used = {c[0]: r for r, c in cols.items()}
+    read = [f"{n} as {_ROLE_WORDS.get(used[n], used[n])}" for n, _, _ in roles if n in used]
+    unread = [n for n, _, _ in roles if n not in used and n.strip()]
+    parts = ([", ".join(read)] if read else []) + ([f"not read: {', '.join(unread)}"] if unread else [])
+    return f" (read: {'; '.join(parts)})"[:400] if parts else ""
 
 
 def _both_ways(vd) -> bool:
