@@ -769,3 +769,18 @@ def test_a_refusal_says_how_each_column_was_read(tmp_path):
     with pytest.raises(LiengInputError, match=r"no drive column .*read: Time as the time, Fx as the friction force, "
                                               r"Fz as the normal force; not read: Q\)"):
         read_record(p, stiffness=K)
+
+
+def test_a_normal_force_written_negative_and_a_lone_F_N_are_read(tmp_path):
+    """A load cell's z axis reads a compression negative (a UMT's `Fz`):
+    the normal force is read as its magnitude, and said; a record's one
+    force named `F_N` (F in N, not a normal force F_N) is the friction."""
+    p = tmp_path / "fz.csv"
+    p.write_text("Time (s),Fx (N),Fz (N)\n" + "".join(f"{a},{b},-20.0\n" for a, b in zip(T, F)))
+    r = read_record(p, v0=1.0, stiffness=K)
+    assert np.mean(r.y) == pytest.approx(20.0) and any("written negative" in n for n in r.notes)
+    q = tmp_path / "fn.csv"
+    q.write_text("t_s,F_N\n" + "".join(f"{a},{b}\n" for a, b in zip(T, F)))
+    r = read_record(q, v0=1.0, stiffness=K)
+    np.testing.assert_allclose(r.x, read_record(_write(tmp_path, "p.csv", "t [s],F [N]", T, F), v0=1.0,
+                                                stiffness=K).x)

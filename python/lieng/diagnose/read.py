@@ -797,6 +797,11 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             y, y_force = _force(path, cols, units, "N"), True
         elif "y" in cols:
             y = cols["y"][1] * _scale(path, cols["y"][0], units["y"], _LENGTH, "displacement")
+    if y_force and float(np.mean(y < 0)) > 0.99:
+        # a normal force written negative throughout: a compression, as a load cell's z axis reads it
+        y = -y
+        notes.append(f"the normal force {cols['N'][0]} is written negative (a compression, as a load cell's z "
+                     f"axis reads it): read as its magnitude")
     # the drive
     vcol = pos = None
     if "v0" in cols:
@@ -1120,13 +1125,14 @@ def _friction_among_normals(roles, tab, cols, units) -> str | None:
     """A record with no friction column but two read as normal forces, one of
     them the friction by its name: a force named with its unit as the last
     part ("F_N" beside "Fn_N": F in N), or a plain "Load" or "Force" beside
-    one named normal (a testing machine's "Load" beside its "Normal Load").
+    one named normal (a testing machine's "Load" beside its "Normal Load");
+    or one so named ("F_N") and no extension: the record's one force.
     Moves it to F (``cols``, ``units`` in place) and says so; None when
     there is no such pair."""
     if {"F", "mu"} & cols.keys():
         return None
     normals = [(n, u) for n, r, u in roles if r == "N"]
-    if len(normals) < 2:
+    if not normals or len(normals) < 2 and "x" in cols:
         return None
 
     def friction_unit(n, u):
@@ -1143,10 +1149,14 @@ def _friction_among_normals(roles, tab, cols, units) -> str | None:
     if len(hits) != 1:
         return None
     name, unit = hits[0]
-    other, ou = next((m, u) for m, u in normals if m != name)
     cols["F"], units["F"] = (name, tab.columns[name]), unit
-    cols["N"], units["N"] = (other, tab.columns[other]), ou
-    return f"column {name} is the friction force and {other} the normal one (both named as forces)"
+    other = next(((m, u) for m, u in normals if m != name), None)
+    if other is None:
+        # "F_N" alone: the record's one force, named F with its unit, is the friction (a record has one)
+        cols.pop("N"), units.pop("N")
+        return f"column {name} is the record's one force, F in {unit}: read as the friction force"
+    cols["N"], units["N"] = (other[0], tab.columns[other[0]]), other[1]
+    return f"column {name} is the friction force and {other[0]} the normal one (both named as forces)"
 
 
 def _stage_beside_force(roles, tab, cols, units, stiffness=None) -> str | None:
