@@ -784,3 +784,20 @@ def test_a_normal_force_written_negative_and_a_lone_F_N_are_read(tmp_path):
     r = read_record(q, v0=1.0, stiffness=K)
     np.testing.assert_allclose(r.x, read_record(_write(tmp_path, "p.csv", "t [s],F [N]", T, F), v0=1.0,
                                                 stiffness=K).x)
+
+
+def test_a_position_that_jumps_is_a_reset_encoder_not_the_stages_travel(tmp_path):
+    """A position column that jumps by tens of mm within a sample or two (a
+    re-zeroed or wrapped encoder, a re-homed stage's counter) is not the
+    stage's travel: the jumps are taken out and said, and the drive reads as
+    without them (the stress test's canonical record jumped back three
+    times by up to 148 mm and was cut into seven strokes)."""
+    t, pos, f = _reciprocating()
+    ref = read_record(_write(tmp_path, "ref.csv", "t [s],F [N],position [mm]", t, f, pos), stiffness=K)
+    jumped = pos.copy()
+    jumped[1500:] -= 50.0
+    jumped[3100:] += 120.0
+    r = read_record(_write(tmp_path, "jump.csv", "t [s],F [N],position [mm]", t, f, jumped), stiffness=K)
+    assert any("jumps 2 times" in n for n in r.notes)
+    np.testing.assert_allclose(r.vd, ref.vd, atol=0.05)
+    assert not any("jumps" in n for n in ref.notes)

@@ -531,6 +531,42 @@ def _smooth_derivative(y, dt, win):
 QUANT_STEPS = 8
 
 
+#: a step of the position column this many times the fast end of its moves (the 90th percentile of its
+#: steps that move), over at most JUMP_RUN samples, is no travel: a stage moves no faster than its drive
+JUMP_FACTOR = 100.0
+JUMP_RUN = 5
+
+
+def _position_jumps(pos, notes):
+    """The position column with its jumps taken out (JUMP_FACTOR, JUMP_RUN:
+    a re-zeroed or wrapped encoder, a re-homed stage's counter, a spike),
+    the travel going on through each at its pace beside it, and said; as it
+    is when it has none."""
+    d = np.diff(pos)
+    ad = np.abs(d)
+    moving = ad[ad > 0]
+    if moving.size < 20:
+        return pos
+    big = ad > JUMP_FACTOR * float(np.percentile(moving, 90))
+    if not np.any(big):
+        return pos
+    edges = np.flatnonzero(np.diff(np.r_[0, big.astype(int), 0]))
+    runs = [(a, b) for a, b in zip(edges[::2], edges[1::2]) if b - a <= JUMP_RUN]
+    if not runs:
+        return pos
+    size = max(abs(float(np.sum(d[a:b]))) for a, b in runs)
+    d = d.copy()
+    for a, b in runs:
+        # (the travel goes on through the jump at its pace beside it)
+        near = np.r_[d[max(a - 10, 0):a], d[b:b + 10]]
+        near = near[~big[np.r_[max(a - 10, 0):a, b:min(b + 10, d.size)]]]
+        d[a:b] = float(np.median(near)) if near.size else 0.0
+    notes.append(f"the position column jumps {len(runs)} time{'s' if len(runs) > 1 else ''} (by up to {size:.4g} mm "
+                 f"within {JUMP_RUN} samples, {JUMP_FACTOR:g} times faster than it moves otherwise): a re-zeroed or "
+                 f"wrapped encoder, not the stage's travel; taken out")
+    return np.r_[pos[0], pos[0] + np.cumsum(d)]
+
+
 def _drive_from_position(pos, dt, notes):
     """The drive velocity (mm/s) from a position column (mm): its smoothed
     derivative over 0.02 s, or, where the position is quantised more
@@ -836,7 +872,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         if not np.ptp(pos) > 1e-9:          # a picometre: rounding, not a drive
             _fail(f"{path}: column {cols['position'][0]}: the drive never moves (its position spans "
                   f"{float(np.ptp(pos)):.3g} mm)")
-        vd, recorded = _drive_from_position(pos, dt, notes), True
+        vd, recorded = _drive_from_position(_position_jumps(pos, notes), dt, notes), True
     else:
         vd, recorded = np.full_like(t, float(v0)), False
     if not np.any(np.abs(vd) > 0):
