@@ -380,16 +380,20 @@ def _row_cells(row: str) -> list:
     return [_unquote(c) for c in re.split(sep, row.strip())]
 
 
+#: a cell of a row of units alone: a unit in brackets ("[s]", "(N)") or a bare short one ("mm/s", "N·m", "µm",
+#: "1/min"), never a name with its unit ("Zeit[s]", "Load_Cell[N]": a header's)
+_UNIT_CELL = re.compile(r"\s*(?:[\[(][^\])]{1,12}[\])]|[A-Za-z0-9µμ°%/·*^.\-]{1,8})\s*")
+
+
 def _units_row(row: str, width: int) -> bool:
     """Whether ``row`` is a row of units alone for a table ``width`` columns wide: as many cells (or one
-    fewer, a trailing separator's), each short and a single word ("mm/s", "[N]", "N·m"), none a number, most
-    filled."""
+    fewer, a trailing separator's), each a unit (:data:`_UNIT_CELL`), none a number, most filled."""
     cells = _row_cells(row)
     while len(cells) > 1 and not cells[-1]:
         cells.pop()
     if not (width - 1 <= len(cells) <= width) or _numeric_cells(row):
         return False
-    if sum(bool(c) for c in cells) < max(1, width - 2) or any(len(c) > 12 or len(c.split()) > 1 for c in cells):
+    if sum(bool(c) for c in cells) < max(1, width - 2) or not all(_UNIT_CELL.fullmatch(c) for c in cells if c):
         return False
     for c in cells:
         try:
