@@ -84,6 +84,9 @@ VARIANTS = {
         + _rows(lambda a, b: f"{a:16.8E}{b:16.8E}\n"),
     "a comment header of names with units, under a comment line of column notes": "% sample rate 1000 Hz\n"
         "% columns: 1 Zeit (s), 2 Load Cell (N)\n% Zeit[s]  Load_Cell[N]\n" + _rows(lambda a, b: f"  {a:.6f}  {b}\n"),
+    "an oscilloscope's metadata (a 'Label,FRICTION' line is no row of units) above its header":
+        "Model,MDO3034\nVertical Units,N\nLabel,FRICTION\n\nTIME (s),CH1 Friction (N)\n"
+        + _rows(lambda a, b: f"{a},{b}\n"),
     "a force in N as the name's last part, beside the normal one (F_N, Fn_N)": "t_s,F_N,Fn_N\n"
         + _rows(lambda a, b: f"{a},{b},20.0\n"),
     "a testing machine's 'Load' beside its 'Normal Load'": '"Time","Load","Normal Load"\n"(s)","(N)","(N)"\n'

@@ -380,20 +380,29 @@ def _row_cells(row: str) -> list:
     return [_unquote(c) for c in re.split(sep, row.strip())]
 
 
-#: a cell of a row of units alone: a unit in brackets ("[s]", "(N)") or a bare short one ("mm/s", "N·m", "µm",
-#: "1/min"), never a name with its unit ("Zeit[s]", "Load_Cell[N]": a header's)
-_UNIT_CELL = re.compile(r"\s*(?:[\[(][^\])]{1,12}[\])]|[A-Za-z0-9µμ°%/·*^.\-]{1,8})\s*")
+#: the units a row of units alone is written in (lower case; a unit may be in brackets): a row of other words
+#: ("Label,TORQUE" in an oscilloscope's metadata) is not one
+_UNITS = frozenset(
+    "s sec ms msec us µs μs min h hr n mn kn un µn μn nn dan gf kgf kp lbf g kg mm um µm μm nm m cm in inch mil "
+    "pa kpa mpa gpa bar mbar psi mm/s um/s µm/s μm/s m/s mm/min m/min in/s mm/sec n·m nm n*m n.m mn·m mnm n·mm nmm "
+    "deg ° degree rad mrad rpm 1/min rev/min hz khz v mv a ma % °c c k - 1 n/m n/mm".split())
+
+
+def _unit_cell(cell: str) -> bool:
+    """Whether a cell is a unit (in brackets or bare) of :data:`_UNITS`, or empty."""
+    c = cell.strip().strip("[]()").strip().replace("\u03bc", "\u00b5").lower()
+    return not c or c in _UNITS
 
 
 def _units_row(row: str, width: int) -> bool:
     """Whether ``row`` is a row of units alone for a table ``width`` columns wide: as many cells (or one
-    fewer, a trailing separator's), each a unit (:data:`_UNIT_CELL`), none a number, most filled."""
+    fewer, a trailing separator's), each a unit (:func:`_unit_cell`), none a number, most filled."""
     cells = _row_cells(row)
     while len(cells) > 1 and not cells[-1]:
         cells.pop()
     if not (width - 1 <= len(cells) <= width) or _numeric_cells(row):
         return False
-    if sum(bool(c) for c in cells) < max(1, width - 2) or not all(_UNIT_CELL.fullmatch(c) for c in cells if c):
+    if sum(bool(c) for c in cells) < max(1, width - 2) or not all(_unit_cell(c) for c in cells):
         return False
     for c in cells:
         try:
