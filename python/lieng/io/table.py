@@ -156,6 +156,8 @@ def _hour(h: int, ampm) -> int | None:
     if not 1 <= h <= 12:
         return None
     return h % 12 + (12 if ampm.lower() == "p" else 0)
+
+
 _DAY_NS = 86_400 * 10 ** 9
 
 
