@@ -1056,10 +1056,9 @@ def _as_read(roles, cols) -> str:
     return f" (read: {'; '.join(parts)})"[:400] if parts else ""
 
 
-def _both_ways(vd) -> bool:
-    """Whether the drive goes each way (clearly: :func:`_moving`) on a tenth of the samples or more."""
-    m = _moving(vd)
-    return min(np.count_nonzero(m > 0), np.count_nonzero(m < 0)) >= 0.1 * vd.size
+def _both_ways(m) -> bool:
+    """Whether the drive's directions ``m`` (:func:`_moving`) go each way on a tenth of the samples or more."""
+    return min(np.count_nonzero(m > 0), np.count_nonzero(m < 0)) >= 0.1 * m.size
 
 
 def _zero_between_directions(x, vd, notes: list, why: str | None = None) -> tuple:
@@ -1069,9 +1068,9 @@ def _zero_between_directions(x, vd, notes: list, why: str | None = None) -> tupl
     directions (the friction as large either way), and said; (x, True).  On
     a drive one way, (x, False) as it is.  ``why`` says why the zero is
     not in the record (by default: two positions' origins)."""
-    if not _both_ways(vd):
-        return x, False
     m = _moving(vd)
+    if not _both_ways(m):
+        return x, False
     mid = 0.5 * (float(np.median(x[m > 0])) + float(np.median(x[m < 0])))
     why = why or "the drive goes both ways and the extension's zero is not in the positions"
     notes.append(f"{why}: set midway between its levels in the two directions ({mid:.4g} mm from the record's "
@@ -1098,9 +1097,9 @@ def _one_sided(x, vd, notes: list) -> tuple:
     offset): :func:`_zero_between_directions`, (x, True).  A record whose
     friction changes side with the drive, or whose drive goes one way, is
     returned as it is, (x, False)."""
-    if not _both_ways(vd):
-        return x, False
     mv = _moving(vd)
+    if not _both_ways(mv):
+        return x, False
     lf, lb = float(np.median(x[mv > 0])), float(np.median(x[mv < 0]))
     if lf * lb <= 0:
         return x, False
@@ -1204,18 +1203,16 @@ def _stage_beside_force(roles, tab, cols, units, stiffness=None) -> str | None:
     Moves it to ``position`` (in place) and says so; None when there is
     none.  ``stiffness`` (N/m), when given, is used to tell them apart
     (:func:`_follows`)."""
-    F = tab.columns[cols["F"][0]]
+    F = tab.columns[cols["F"][0]] * _FORCE.get(_unit_key(units["F"]), 1.0)
     scaled = lambda n, u: tab.columns[n] * _LENGTH.get(_unit_key(u), 1.0)
-    if "x" in cols and not _follows(scaled(cols["x"][0], units["x"]), F * _FORCE.get(_unit_key(units["F"]), 1.0),
-                                    stiffness):
+    if "x" in cols and not _follows(scaled(cols["x"][0], units["x"]), F, stiffness):
         cols["position"], units["position"] = cols.pop("x"), units.pop("x")
         return (f"column {cols['position'][0]} does not follow the force {cols['F'][0]} (the spring's extension "
                 f"would): read as the drive's position")
     if "N" not in cols and "mu" not in cols:
         return None
     axes = [(n, u) for n, r, u in roles if r in ("x", "y") and n.strip().lower() in ("x", "y")
-            and _unit_key(u) in _LENGTH and u and not _follows(scaled(n, u), F * _FORCE.get(_unit_key(units["F"]), 1.0),
-                                                               stiffness)]
+            and _unit_key(u) in _LENGTH and u and not _follows(scaled(n, u), F, stiffness)]
     if not axes:
         return None
     name, unit = max(axes, key=lambda a: float(np.nanmax(tab.columns[a[0]]) - np.nanmin(tab.columns[a[0]])))

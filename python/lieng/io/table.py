@@ -396,6 +396,17 @@ def _unit_cell(cell: str) -> bool:
     return not c or c in _UNITS
 
 
+def _has_number(cells) -> bool:
+    """Whether any of ``cells`` is a number (a decimal comma read too)."""
+    for c in cells:
+        try:
+            _number(c, True)
+            return True
+        except ValueError:
+            pass
+    return False
+
+
 def _units_row(row: str, width: int) -> bool:
     """Whether ``row`` is a row of units alone for a table ``width`` columns wide: as many cells (or one
     fewer, a trailing separator's), each a unit (:func:`_unit_cell`), none a number, most filled."""
@@ -406,28 +417,14 @@ def _units_row(row: str, width: int) -> bool:
         return False
     if sum(bool(c) for c in cells) < max(1, width - 2) or not all(_unit_cell(c) for c in cells):
         return False
-    for c in cells:
-        try:
-            _number(c.strip("[]() "), True)
-            return False
-        except ValueError:
-            pass
-    return True
+    return not _has_number(c.strip("[]() ") for c in cells)
 
 
 def _text_row(row: str, width: int) -> bool:
     """Whether ``row`` is a row of words for a table ``width`` columns wide (no cell a number, at most as many
     cells): a header's names or a comments row under them."""
     cells = _row_cells(row)
-    if len(cells) > width:
-        return False
-    for c in cells:
-        try:
-            _number(c, True)
-            return False
-        except ValueError:
-            pass
-    return True
+    return len(cells) <= width and not _has_number(cells)
 
 
 def _header_after_preamble(rows, content) -> int:
@@ -463,14 +460,7 @@ def _header_after_preamble(rows, content) -> int:
             h -= 1
     # a header has no number in it (a data row with a word in it is a bad row, named as such); its cells split
     # as the row is written (catman's "Time  1 - default sample rate" is one TAB-separated cell, not a number)
-    head = rows[content[h]]
-    for c in re.split(r"[,;\t]" if re.search(r"[,;\t]", head) else r"\s+", head.strip()):
-        try:
-            _number(_unquote(c), True)
-            return 0
-        except ValueError:
-            pass
-    return h
+    return 0 if _has_number(_row_cells(rows[content[h]])) else h
 
 
 def read_table(path, expect: str, missing: str = "error", unused=None, sparse=None) -> Table:
