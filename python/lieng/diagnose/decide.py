@@ -56,7 +56,7 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side", "other_side", "fn_sensitivity", "decide",
+__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side", "fn_sensitivity", "decide",
            "misfit", "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
@@ -263,20 +263,6 @@ def calibrate_side(k: str, side, S: float, se: float, v, e=None, u: float = 0.0,
                                            None if readings is None else tuple(mirror(readings)), mirror(alt))
     rb = alt_shift(m0, s0, np.size(v), mirror(alt), one)
     return g * m0, s0, g * d, den, z, p, band, rb
-
-
-def other_side(k: str, st: dict, se: dict, null: dict, row: dict, u_fn: float, null_alt=None):
-    """The opposite side of a one-sided candidate ``k`` tested as its own
-    side is (:func:`calibrate_side` with side -1): (p, effect size), or
-    None where the candidate was not read.  Reported, never named (a twin
-    branch's reading below 0, a decelerating branch below the accelerating
-    one, is what a load rising with x also makes of the slips)."""
-    v, e = _finite_null(null, k)
-    if not row.get("applicable") or v.size < 5 or not math.isfinite(st[k]):
-        return None
-    alt = (null_alt or {}).get(k)
-    out = calibrate_side(k, -1, float(st[k]), row.get("se") or 0.0, v, e, u_fn, row.get("fn_readings"), alt)
-    return out[5], out[2]
 
 
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,

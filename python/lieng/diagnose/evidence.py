@@ -17,8 +17,8 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     (ch. 4.1, TRC's reverse construction): in each slip F = x + x''/wn**2
     against the sliding speed s, the decelerating branch minus the
     accelerating one at equal s (between a quarter and three quarters of the
-    slip's peak speed), averaged; the median over slips over D, one-sided
-    (the decelerating branch above).  Smoothed within each slip only
+    slip's peak speed), averaged; the median over slips over D, two-sided
+    (the decelerating branch above, or below).  Smoothed within each slip only
     (:func:`slip_reverse_construction`), so no arc shape is assumed.
 ``load_variation``
     The reverse construction F = x + x''/wn**2 in the slips regressed on a
@@ -112,8 +112,12 @@ CANDIDATES = ("load_variation", "twin_branch", "static_ageing", "triggering", "d
 #: of finite slope, so the relative velocity in stick grows with the spring
 #: force; bristle presliding is the same thing)
 FEATURES = ("creep",)
-#: effects with a direction: only a positive statistic counts
-ONE_SIDED = {"twin_branch", "static_ageing", "triggering", "drive_modulation", "creep", "friction_drift"}
+#: effects with a direction: only a positive statistic counts.  A twin branch
+#: is read both ways (two-sided): the decelerating branch above the
+#: accelerating one (ch. 4.1's loops) or below it (a friction that lags the
+#: speed: frictional memory, a lubricant film's or a melt film's thermal lag);
+#: below, it is named only where nothing else accounts for it (:func:`lieng.diagnose.diagnose`)
+ONE_SIDED = {"static_ageing", "triggering", "drive_modulation", "creep", "friction_drift"}
 #: the smallest effect size this report calls physically relevant (position
 #: dependence: the range of the friction along the track, 10 % of the drop) (stated
 #: a priori from the thesis and common tribometry, not fitted to data):

@@ -513,7 +513,7 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
         if tw is not None:
             out.append(lvl(tw))
             m = float(np.mean(tw.dg))
-            if m > 0 and st["twin_branch"] > 0:
+            if m * st["twin_branch"] > 0:
                 out.append(lvl(tw.copy(dg=tw.dg * (st["twin_branch"] * D / m))))
     elif effect == "load_variation" and ylow is not None:
         idx, s, F, br, sid = slip_friction(pr, c, fn)
