@@ -426,6 +426,41 @@ def test_an_effect_beyond_its_own_model_is_reported_not_named():
     assert decide(st, se, null)["twin_branch"]["named"]
 
 
+def test_a_twin_branch_below_is_read_two_sided_and_named_only_where_nothing_else_accounts_for_it():
+    """The twin branch is tested both ways: a decelerating branch 0.2 D below
+    the accelerating one (a friction that lags the speed, Hess & Soom's
+    hysteresis) is significant with half the p it would have one-sided
+    (Bonferroni over the two sides); it stands where no other candidate is
+    named and no recorded load can account for it, and not where a
+    triggering is named or the normal channel's load reaches its size."""
+    from lieng.diagnose.decide import below_accounted, calibrate, decide
+    from lieng.diagnose.evidence import CANDIDATES
+
+    rng = np.random.default_rng(1)
+    st = dict.fromkeys(CANDIDATES, 0.0)
+    se = dict.fromkeys(CANDIDATES, 0.01)
+    null = {k: rng.normal(0.0, 0.01, 39) for k in CANDIDATES}
+    st["twin_branch"] = -0.2
+    rows = decide(st, se, null)
+    tw = rows["twin_branch"]
+    assert tw["named"] and tw["effect_size"] < -0.15 and tw["interval"][1] < 0
+    st["twin_branch"] = -0.03               # z about -3: one-sided p about 1e-3, two-sided twice that
+    below = calibrate(0.03, 0.01, -null["twin_branch"], True)[5]
+    assert decide(st, se, null)["twin_branch"]["p"] == pytest.approx(2 * below, rel=1e-9) and below < 0.01
+    assert calibrate(-0.03, 0.01, null["twin_branch"], True)[5] > 0.5   # the side above alone never passes
+    assert below_accounted(rows, normal_recorded=False)[0] is None
+    rows["triggering"]["named"] = True
+    assert "triggering is named" in below_accounted(rows, False)[0]
+    rows["triggering"]["named"] = False
+    lv = rows["load_variation"]
+    lv.update(applicable=True, interval=[-0.01, 0.05])
+    assert below_accounted(rows, True) == (None, 0.05)
+    lv["interval"] = [0.1, 0.3]             # a load whose effect reaches the twin's size
+    assert "could account for it" in below_accounted(rows, True)[0]
+    lv.update(applicable=False, interval=None)
+    assert "not read" in below_accounted(rows, True)[0]
+
+
 def test_the_fn_band_is_read_on_the_record_itself():
     """A statistic that follows fn is tested at the least favourable fn
     within the stated uncertainty.  How far it moves is read on the record

@@ -22,8 +22,8 @@ from lieng.errors import LiengInputError
 from lieng.io.outputs import finite_json as _finite
 from lieng.diagnose.baseline import (CALIBRATION_SAMPLES, Params, calibrate_fn, fit_baseline, pr_like,
                                      simulate, slip_friction)
-from lieng.diagnose.decide import (ALPHA, REPLICATE_BUDGET, RIVALS, decide, fn_needed, misfit, null_replicates,
-                                   rivals)
+from lieng.diagnose.decide import (ALPHA, REPLICATE_BUDGET, RIVALS, below_accounted, decide, fn_needed, misfit,
+                                   null_replicates, rivals)
 from lieng.diagnose.evidence import (CANDIDATES, MARGIN, ONE_SIDED, SLIDING, fn_readings, sliding_statistics,
                                      statistics)
 from lieng.diagnose.goodness import RIG, mean_above_zero, onset_ringing, rig_mode
@@ -586,24 +586,13 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                             f"+- {100 * un:.2g} % (--fn-uncertainty {un:.2g}) the same reading would be significant")
     # a twin branch read below 0 (the decelerating branch below the accelerating one: a friction that lags the
     # speed, frictional memory, a film's thermal lag) is what a load that rises with x, a triggering or a
-    # modulated drive also make of the slips (the reading below fired on 28 load, 15 triggering and 8 drive
-    # records of the bench, 3 effect-free): named only where no other effect is, and, with a normal channel,
-    # where the load it records cannot account for it (its 95 % interval below the twin's size).  Without a
-    # normal channel a load that rises with x is not excluded: said.  (Stop 58 named it beside the others:
-    # it cost 23 load records named right, now twin, for 7 twins found.)
+    # modulated drive also make of the slips (stop 59's bench read it on 28 load, 15 triggering and 8 drive
+    # records, 3 effect-free): named only where nothing else accounts for it (:func:`.decide.below_accounted`).
+    # (Stop 58 named it beside the others: that cost 23 load records named right, now twin, for 7 twins found.)
     tw = rows["twin_branch"]
     if tw["named"] and tw["effect_size"] < 0:
         size = abs(tw["effect_size"])
-        others = [k for k in CANDIDATES if k != "twin_branch" and rows[k]["named"]]
-        lv = rows["load_variation"]
-        load_hi = lv["interval"][1] if lv.get("applicable") and lv.get("interval") else None
-        why = None
-        if others:
-            why = f"{', '.join(others)} {'is' if len(others) == 1 else 'are'} named and bend{'s' if len(others) == 1 else ''} the slips alike"
-        elif pr.y is not None and (load_hi is None or load_hi >= size):
-            why = ("the recorded normal channel's load could account for it (" +
-                   (f"its effect up to {load_hi:.3g} of the drop" if load_hi is not None else "its evidence is not read")
-                   + ")")
+        why, load_hi = below_accounted(rows, pr.y is not None)
         tw["below"] = {"p": float(tw["p"]), "effect_size": float(tw["effect_size"])}
         head_ = (f"the slips read a decelerating branch {size:.3g} D below the accelerating one (p = {tw['p']:.2g}, "
                  f"beyond what an error of fn within +- {100 * u_fn:.3g} % makes): a friction that lags the speed "
@@ -616,8 +605,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             notes.append(head_ + "; a load that rises with x bends the slips alike, and the record has no normal "
                                  "channel to tell the two apart")
         else:
-            notes.append(head_ + f"; the recorded normal channel's load accounts for at most {load_hi:.3g} of the "
-                                 f"drop")
+            notes.append(head_ + f"; the load the recorded normal channel carries accounts for at most "
+                                 f"{max(load_hi, 0.0):.2g} of the drop (its 95 % interval's upper end)")
     for k in CANDIDATES:
         r = rows[k]
         size = r["effect_size"] if k in ONE_SIDED else abs(r["effect_size"])

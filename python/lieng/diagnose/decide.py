@@ -56,7 +56,7 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side", "fn_sensitivity", "decide",
+__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side", "below_accounted", "fn_sensitivity", "decide",
            "misfit", "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
@@ -263,6 +263,32 @@ def calibrate_side(k: str, side, S: float, se: float, v, e=None, u: float = 0.0,
                                            None if readings is None else tuple(mirror(readings)), mirror(alt))
     rb = alt_shift(m0, s0, np.size(v), mirror(alt), one)
     return g * m0, s0, g * d, den, z, p, band, rb
+
+
+def below_accounted(rows: dict, normal_recorded: bool) -> tuple:
+    """Whether a twin branch named below 0 (the decelerating branch below
+    the accelerating one) is accounted for otherwise: (the reason, or None
+    when it stands; the upper end of the load's 95 % interval, or None).
+
+    A load that rises with x, a triggering and a modulated drive bend the
+    slips alike, so it stands only where no other candidate is named and,
+    with a normal channel (``normal_recorded``), where the load that
+    channel records cannot account for it: the load's effect size, read
+    over the drop as the twin's is, has its 95 % interval below the twin's
+    size.  Without a normal channel a load that rises with x is not
+    excluded (the caller says so)."""
+    size = abs(rows["twin_branch"]["effect_size"])
+    others = [k for k in CANDIDATES if k != "twin_branch" and rows[k]["named"]]
+    lv = rows["load_variation"]
+    load_hi = float(lv["interval"][1]) if lv.get("applicable") and lv.get("interval") else None
+    if others:
+        one = len(others) == 1
+        return f"{', '.join(others)} {'is' if one else 'are'} named and bend{'s' if one else ''} the slips alike", load_hi
+    if normal_recorded and (load_hi is None or load_hi >= size):
+        return ("the recorded normal channel's load could account for it ("
+                + (f"its effect up to {load_hi:.3g} of the drop" if load_hi is not None else "its evidence is not read")
+                + ")"), load_hi
+    return None, load_hi
 
 
 def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None, p_own=None,
