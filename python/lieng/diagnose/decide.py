@@ -13,7 +13,9 @@ each replicate is analysed exactly like the record, with the nominal fn.
 For candidate k: z = (S - m0) / sqrt(max(s0, se)**2 + s0**2 / B), with m0, s0
 the replicates' mean and spread and se the record's own standard error
 (its cycle-to-cycle scatter: a real rig is noisier than any simulation);
-p from the normal distribution (one-sided for effects with a direction).
+p from the normal distribution (one-sided for effects with a direction; the
+twin branch both ways, each side one-sided with its own fn band and the
+better side's p doubled: :func:`calibrate_two_way`).
 A statistic that follows the natural frequency (its replicates' values
 regressed on their drawn fn error: a slope beyond twice its standard error)
 is tested at the least favourable fn within the stated uncertainty u: z =
@@ -56,7 +58,7 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side", "below_accounted", "fn_sensitivity", "decide",
+__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side", "calibrate_two_way", "TWO_WAY", "below_accounted", "fn_sensitivity", "decide",
            "misfit", "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
@@ -265,6 +267,25 @@ def calibrate_side(k: str, side, S: float, se: float, v, e=None, u: float = 0.0,
     return g * m0, s0, g * d, den, z, p, band, rb
 
 
+#: candidates read both ways: each side is tested one-sided, with its own band (an fn error credited on
+#: neither side), and the better side's p doubled (Bonferroni over the two sides)
+TWO_WAY = ("twin_branch",)
+
+
+def calibrate_two_way(k: str, S: float, se: float, v, e=None, u: float = 0.0, readings=None, alt=None) -> tuple:
+    """:func:`calibrate_side` for candidate ``k``; for one of
+    :data:`TWO_WAY`, both sides one-sided, each with its own band (how far
+    an fn error within u moves the reading towards that side's null), the
+    side with the smaller p kept and its p doubled: the same tuple, z
+    signed as the departure."""
+    if k not in TWO_WAY:
+        return calibrate_side(k, None, S, se, v, e, u, readings, alt)
+    up = calibrate_side(k, 1, S, se, v, e, u, readings, alt)
+    dn = calibrate_side(k, -1, S, se, v, e, u, readings, alt)
+    m0, s0, d, den, z, p, band, rb = up if up[5] <= dn[5] else dn
+    return m0, s0, d, den, (z if up[5] <= dn[5] else -z), min(1.0, 2.0 * p), band, rb
+
+
 def below_accounted(rows: dict, normal_recorded: bool) -> tuple:
     """Whether a twin branch named below 0 (the decelerating branch below
     the accelerating one) is accounted for otherwise: (the reason, or None
@@ -340,7 +361,7 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
         err = float(se[k]) if math.isfinite(se[k]) else 0.0
         rd = (fn_readings or {}).get(k)
         alt = (null_alt or {}).get(k)
-        m0, s0, d, den, z, p, band, rb = calibrate_side(k, None, S, err, v, e, u_fn, rd, alt)
+        m0, s0, d, den, z, p, band, rb = calibrate_two_way(k, S, err, v, e, u_fn, rd, alt)
         rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=err, z=z, p=float(p), effect_size=d, applicable=True,
                        interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band - rb)
         if alt is not None:
@@ -442,8 +463,8 @@ def _given_rival(pr, k, other, other_ext, fn, u_fn, st, row, y_is_force, arcs, y
     v, e = _finite_null(null2, k)
     if v.size < 5:
         return None
-    m0, s0, d, _, _, p, _, _ = calibrate_side(k, None, float(st[k]), row["se"] or 0.0, v, e, u_fn,
-                                              row.get("fn_readings"))
+    m0, s0, d, _, _, p, _, _ = calibrate_two_way(k, float(st[k]), row["se"] or 0.0, v, e, u_fn,
+                                                 row.get("fn_readings"))
     row["given_rival"] = {"rival": other, "null_mean": m0, "null_sd": s0, "effect_size": d, "p": p,
                           "replicates": n2}
     return p, (d if k in ONE_SIDED else abs(d))
