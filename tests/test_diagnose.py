@@ -461,6 +461,24 @@ def test_a_twin_branch_below_is_read_two_sided_and_named_only_where_nothing_else
     assert "not read" in below_accounted(rows, True)[0]
 
 
+def test_each_side_of_a_two_way_candidate_keeps_its_own_fn_band():
+    """A twin read at fn (1 -+ u) as 0.10 and 0.40 about 0.14: an fn error
+    can move it 0.04 towards the null below it (the band of the side above)
+    and 0.26 away; the side above is tested with the 0.04, as one-sided, its
+    p doubled; a symmetric band (0.26) would hide it.  Mirrored, the side
+    below is tested alike."""
+    from lieng.diagnose.decide import calibrate, calibrate_two_way
+
+    v = np.random.default_rng(3).normal(0.0, 0.005, 39)
+    one = calibrate(0.14, 0.01, v, True, readings=(0.10, 0.40))
+    two = calibrate_two_way("twin_branch", 0.14, 0.01, v, readings=(0.10, 0.40))
+    assert one[6] == pytest.approx(0.04) and two[6] == pytest.approx(0.04)
+    assert two[5] == pytest.approx(min(1.0, 2 * one[5])) and two[5] < 1e-9 and two[4] > 0
+    assert calibrate(0.14, 0.01, v, False, readings=(0.10, 0.40))[6] == pytest.approx(0.26)
+    below = calibrate_two_way("twin_branch", -0.14, 0.01, -v, readings=(-0.10, -0.40))
+    assert below[2] == pytest.approx(-two[2]) and below[5] == pytest.approx(two[5]) and below[4] < 0
+
+
 def test_the_fn_band_is_read_on_the_record_itself():
     """A statistic that follows fn is tested at the least favourable fn
     within the stated uncertainty.  How far it moves is read on the record
