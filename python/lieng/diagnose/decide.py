@@ -5,8 +5,9 @@ distribution under the fitted baseline, obtained by a **parametric
 bootstrap**: B records simulated from the baseline on the record's own time
 grid and drive, with white noise at the record's own noise level (x and the
 normal channel; the normal channel modelled as its part locked to the
-motion), and with the natural frequency drawn uniformly within its stated
-uncertainty; a normal force is constant in them (the baseline's constant
+motion), and with the natural frequency drawn within its stated
+uncertainty u (a given fn within u of the true one: fn / (1 - w), w uniform
+within +-u); a normal force is constant in them (the baseline's constant
 load), a normal reading keeps its part locked to the motion (crosstalk) (a ``--fn`` off by a few per cent is a nuisance, not an effect);
 each replicate is analysed exactly like the record, with the nominal fn.
 
@@ -22,7 +23,7 @@ is tested at the least favourable fn within the stated uncertainty u: z =
 (S - m0 - band) / sqrt(max(s0, se)**2 + s0**2 / B), m0 and s0 from the line
 at the nominal fn (:func:`calibrate`), band the largest shift an fn error
 within u makes: read on the record itself where its statistic can be read
-again at fn (1 -+ u) (the twin branch, a load read from a normal reading:
+again at fn / (1 +- u) (the twin branch, a load read from a normal reading:
 the rig need not follow fn as the replicates' 1-DoF slider does), otherwise
 u (|slope| + its standard error); so that the false-alarm rate holds for
 every fn within u, the edges too (a user's fn off by exactly u), not only on
@@ -113,8 +114,9 @@ def null_replicates(pr: Prepared, base: Params, fn: float, u_fn: float, B: int =
     t0 = time.perf_counter()
     done = 0
     for b in range(B):
-        e = u_fn * rng.uniform(-1.0, 1.0)
-        fb = fn * (1.0 + e)
+        # a given fn within u_fn of the true one: the true fn within fn / (1 + u) .. fn / (1 - u)
+        fb = fn / (1.0 - u_fn * rng.uniform(-1.0, 1.0))
+        e = fb / fn - 1.0
         xs, vs, _ = simulate(pr, base, fb, ylow)
         xb = xs + sx * rng.standard_normal(xs.size)
         if pr.quantum > 0:
@@ -163,11 +165,12 @@ def noise_sd(s0: float, se: float, n: int) -> float:
 
 def fn_sensitivity(v, e, u: float):
     """How a statistic follows the natural frequency: the replicates' values
-    ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, uniform within
+    ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, fb = fn / (1 - w), w uniform within
     +-u).  Returns (m0, s0, band) when the slope is significant (beyond twice
     its standard error): the null mean at the nominal fn, the spread about
     the line (the noise alone) and the largest shift an fn error within u
-    makes, u |slope|; None otherwise."""
+    makes (the true fn as far as fn / (1 - u), an error of u / (1 - u)),
+    u / (1 - u) |slope|; None otherwise."""
     if e is None or u <= 0 or v.size < 8 or not np.ptp(e) > 0:
         return None
     A = np.column_stack([np.ones(e.size), e - e.mean()])
@@ -178,7 +181,7 @@ def fn_sensitivity(v, e, u: float):
     if not abs(co[1]) > 2.0 * se_b:
         return None
     m0 = float(co[0] - co[1] * e.mean())
-    return m0, s, u * (abs(float(co[1])) + se_b)
+    return m0, s, u / (1.0 - u) * (abs(float(co[1])) + se_b)
 
 
 def alt_shift(m0: float, s0: float, n: int, alt, one_sided: bool) -> float:
@@ -208,8 +211,8 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, r
     average over them); the standard deviation returned then spans the band
     too (d +- 1.96 of it is d +- (band + 1.96 sd)).
 
-    ``readings``, the record's own statistic read at fn (1 - u) and
-    fn (1 + u), give the band from the record itself: how far its reading
+    ``readings``, the record's own statistic read at fn / (1 + u) and
+    fn / (1 - u), give the band from the record itself: how far its reading
     moves when fn is anywhere within u (towards the null: the favourable
     side for the effect is never credited).  The replicates, a 1-DoF
     slider, need not follow fn as the record does (a second mode of the
@@ -321,7 +324,7 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
     test) for some candidates: their effect size is the statistic itself.
     ``withheld`` maps candidates to the reason their evidence is not read.
     ``fn_readings`` maps candidates to the record's own statistic read at
-    fn (1 -+ u_fn), ``null_alt`` to their values on an alternative null's
+    fn / (1 +- u_fn), ``null_alt`` to their values on an alternative null's
     replicates (:func:`calibrate`).
     ``sizes`` maps candidates to an effect size read on a physical scale
     apart from the statistic the test reads, with its standard error

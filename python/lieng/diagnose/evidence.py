@@ -778,13 +778,16 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
 def fn_readings(pr: Prepared, c: Cycles, fn: float, u: float, D: float, ylow=None, y_is_force=False,
                 arcs: bool = True, skip=()) -> dict:
     """The slip-shape statistics (twin branch; a load read from a normal
-    reading) read again at fn (1 - u) and fn (1 + u), on the same cycles:
+    reading) read again at fn / (1 + u) and fn / (1 - u), the edges of the
+    true fn when the given one is within u of it, on the same cycles:
     how far the record's own reading moves over the stated uncertainty of
     fn (:func:`.decide.calibrate`); ``ylow`` the low-passed normal channel
     the record's own reading used; the candidates in ``skip`` (withheld) are
     not read."""
     out = {}
-    fs = (fn * (1.0 - u), fn * (1.0 + u))
+    # (a given fn within u of the true one: the true fn as far as fn / (1 + u) and fn / (1 - u); a user's
+    # fn 5 % low leaves the true one 5.3 % above it)
+    fs = (fn / (1.0 + u), fn / (1.0 - u))
     twin = _twin_arcs if arcs else _twin_rc
     if "twin_branch" not in skip:
         out["twin_branch"] = tuple(twin(pr, c, f)[0] / D for f in fs)
