@@ -163,7 +163,7 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "
                     "estimated from the slips when not given (a TRC deck gives it: OMNH)")
     dg.add_argument("--fn-uncertainty", type=float, metavar="REL",
-                    help="relative uncertainty of --fn (default 0.05); the slip-shape evidence is tested at the "
+                    help="relative uncertainty of --fn (default 0.05: within 5 %% of the true fn); the slip-shape evidence is tested at the "
                          "least favourable fn within it: an fn measured to 0.01 lets smaller twin branches through")
     dg.add_argument("--rate", type=float, metavar="HZ", help="sampling rate (Hz) of a record without a time "
                     "column (its rows are then evenly spaced samples)")
