@@ -163,8 +163,9 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--fn", type=float, metavar="HZ", help="natural frequency of the tangential mode (Hz); "
                     "estimated from the slips when not given (a TRC deck gives it: OMNH)")
     dg.add_argument("--fn-uncertainty", type=float, metavar="REL",
-                    help="relative uncertainty of --fn (default 0.05: within 5 %% of the true fn); the slip-shape evidence is tested at the "
-                         "least favourable fn within it: an fn measured to 0.01 lets smaller twin branches through")
+                    help="relative uncertainty of --fn (default 0.05: within 5 %% of the true fn); the slip-shape "
+                         "evidence is tested at the least favourable fn within it: an fn measured to 0.01 lets "
+                         "smaller twin branches through")
     dg.add_argument("--rate", type=float, metavar="HZ", help="sampling rate (Hz) of a record without a time "
                     "column (its rows are then evenly spaced samples)")
     dg.add_argument("--stiffness", type=_quantity, metavar="N_M", help="tangential stiffness (N/m) of a force "

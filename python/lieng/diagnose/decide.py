@@ -59,8 +59,8 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side", "calibrate_two_way", "TWO_WAY", "below_accounted", "fn_sensitivity", "decide",
-           "misfit", "RIVALS", "rivals"]
+__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side",
+           "calibrate_two_way", "TWO_WAY", "below_accounted", "fn_sensitivity", "decide", "misfit", "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
 ALPHA = 0.05
@@ -165,8 +165,8 @@ def noise_sd(s0: float, se: float, n: int) -> float:
 
 def fn_sensitivity(v, e, u: float):
     """How a statistic follows the natural frequency: the replicates' values
-    ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, fb = fn / (1 - w), w uniform within
-    +-u).  Returns (m0, s0, band) when the slope is significant (beyond twice
+    ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, fb = fn / (1 - w),
+    w uniform within +-u).  Returns (m0, s0, band) when the slope is significant (beyond twice
     its standard error): the null mean at the nominal fn, the spread about
     the line (the noise alone) and the largest shift an fn error within u
     makes (the true fn as far as fn / (1 - u), an error of u / (1 - u)),
@@ -307,10 +307,12 @@ def below_accounted(rows: dict, normal_recorded: bool) -> tuple:
     load_hi = float(lv["interval"][1]) if lv.get("applicable") and lv.get("interval") else None
     if others:
         one = len(others) == 1
-        return f"{', '.join(others)} {'is' if one else 'are'} named and bend{'s' if one else ''} the slips alike", load_hi
+        return (f"{', '.join(others)} {'is' if one else 'are'} named and bend{'s' if one else ''} the slips "
+                f"alike"), load_hi
     if normal_recorded and (load_hi is None or load_hi >= size):
         return ("the recorded normal channel's load could account for it ("
-                + (f"its effect up to {load_hi:.3g} of the drop" if load_hi is not None else "its evidence is not read")
+                + (f"its effect up to {load_hi:.3g} of the drop" if load_hi is not None else
+                   "its evidence is not read")
                 + ")"), load_hi
     return None, load_hi
 

@@ -116,7 +116,7 @@ FEATURES = ("creep",)
 #: is read both ways (two-sided): the decelerating branch above the
 #: accelerating one (ch. 4.1's loops) or below it (a friction that lags the
 #: speed: frictional memory, a lubricant film's or a melt film's thermal lag);
-#: below, it is named only where nothing else accounts for it (:func:`lieng.diagnose.diagnose`)
+#: below, it is named only where nothing else accounts for it (:func:`.decide.below_accounted`)
 ONE_SIDED = {"static_ageing", "triggering", "drive_modulation", "creep", "friction_drift"}
 #: the smallest effect size this report calls physically relevant (position
 #: dependence: the range of the friction along the track, 10 % of the drop) (stated
