@@ -536,17 +536,21 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     null_alt = null_replicates(pr, base_all, fn_used, u_fn, B=max(replicates * 2 // 5, 5), budget=0.4 * budget,
                                seed=1, y_is_force=rec.y_is_force, arcs=arcs)[0] if rig is not None else None
     # the twin-branch evidence is calibrated by replicates whose slips are like the record's: where the
-    # record's slips outlast the baseline's (by over SLIP_MATCH of it and 3.5 of its spread) it is withheld
+    # record's slips outlast the baseline's (by over SLIP_MATCH of it and 3.5 of its spread) its side above is
+    # withheld: longer slips are what a decelerating branch below the accelerating one makes (the slip runs on
+    # over a lower friction), the effect itself, and the side below is read (named only where nothing else
+    # accounts for it, :func:`.decide.below_accounted`)
     dur, dn = aux["gof"]["slip_duration"], null.get("slip_duration", np.array([]))
     dn = dn[np.isfinite(dn)]
+    longer = None
     if dn.size >= 5 and not withheld:
         m0, s0 = float(np.mean(dn)), float(np.std(dn, ddof=1))
         if dur - m0 > max(SLIP_MATCH * m0, 3.5 * s0):
-            why = (f"the baseline does not reproduce the slips (they last {dur:.3g} half natural periods, its "
-                   f"replicates' {m0:.3g} +- {s0:.2g}): their shape cannot be calibrated")
-            withheld = {"twin_branch": why}
-            warnings.append(why + "; the twin-branch evidence is withheld (a load that follows the motion, itself "
-                                  "a candidate, also changes the slips' duration)")
+            longer = (f"the baseline does not reproduce the slips (they last {dur:.3g} half natural periods, its "
+                      f"replicates' {m0:.3g} +- {s0:.2g})")
+            warnings.append(longer + ": a twin branch above is not read (it shortens the slips); below, as a friction "
+                                     "that lags the speed lengthens them, it is (a load that follows the motion, "
+                                     "itself a candidate, also changes the slips' duration)")
     # a second mode that rings after each arrest bends the slips' x'' too: said, not acted on (withholding
     # the twin there cost as many twin branches as it saved false alarms on a two-mass generator)
     ring = [m for m in misfit(aux["gof"], null, RIG) if m[1] > m[2]]
@@ -590,6 +594,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     # records, 3 effect-free): named only where nothing else accounts for it (:func:`.decide.below_accounted`).
     # (Stop 58 named it beside the others: that cost 23 load records named right, now twin, for 7 twins found.)
     tw = rows["twin_branch"]
+    if longer is not None and tw["named"] and tw["effect_size"] > 0:
+        tw["named"] = False
+        tw["not_named"] = longer + ": a branch above shortens the slips, these outlast the baseline's"
     if tw["named"] and tw["effect_size"] < 0:
         size = abs(tw["effect_size"])
         why, load_hi = below_accounted(rows, pr.y is not None)
