@@ -61,10 +61,10 @@ STICK_FASTEST = 1.25
 #: a slip lasts about half a natural period (longer where the friction falls with speed): slips shorter
 #: than this many natural periods of a given --fn say that --fn is wrong
 SLIP_SHORTEST = 0.2
-#: the twin-branch evidence is read only when the record's slips last no
-#: longer than the baseline's replicates', beyond this fraction (shorter slips
-#: are what a decelerating branch above the accelerating one makes: the
-#: effect itself)
+#: the twin-branch evidence's side above is read only when the record's slips
+#: last no longer than the baseline's replicates', beyond this fraction
+#: (shorter slips are what a decelerating branch above the accelerating one
+#: makes: the effect itself; longer, what one below makes, which is read)
 SLIP_MATCH = 0.10
 #: the effects whose extension moves the friction level along the record: their gains are judged against
 #: the plain baseline, the others' against the one read through the level's trend (:func:`.extend.level_trend`)
