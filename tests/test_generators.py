@@ -107,15 +107,21 @@ def test_a_decelerating_branch_below_the_accelerating_one_is_named_where_nothing
     by a helper session that had not read the diagnosis) is named twin_branch
     with its size below 0 and a gain on held-out cycles, and a note says that
     a load rising with x would bend the slips alike (the record has no
-    normal channel); the effect-free record of the same generator names
-    nothing."""
+    normal channel), also where its slips outlast the baseline's (as a
+    branch below makes them); the effect-free record of the same generator
+    names nothing."""
     from lieng.diagnose import diagnose, read_record
 
-    def run(case):
-        truth = GENS["slideway_ballscrew"].write_record(case, 0, str(tmp_path), "clean")
+    def run(case, seed=0):
+        truth = GENS["slideway_ballscrew"].write_record(case, seed, str(tmp_path), B.NUISANCES[seed % 7])
         a = B.parse_args(truth["args"])
         return diagnose(read_record(truth["file"], v0=a.v0, stiffness=a.stiffness), a.fn)
 
+    # (seed 1: slips that outlast the baseline's replicates', as a branch below makes them: only the side
+    # above is withheld; stop 59 withheld the twin whole there)
+    d1 = run("twin_branch", 1)
+    assert d1.effect == "twin_branch" and d1.evidence["twin_branch"]["effect_size"] < -0.05 and d1.gain >= 0.3
+    assert any("a twin branch above is not read" in w for w in d1.warnings)
     d = run("twin_branch")
     tw = d.evidence["twin_branch"]
     assert d.effect == "twin_branch" and -0.2 < tw["effect_size"] < -0.05 and d.gain >= 0.3, (tw, d.gain)
