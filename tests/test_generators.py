@@ -51,7 +51,8 @@ def test_slips_slower_than_fn_are_read_for_a_twin_and_faster_ones_are_not(tmp_pa
     than the given fn: the twin is still read, and named.  Slips that swing
     faster say fn is given too low, which parts the reverse construction's
     branches like a twin: withheld.  Too high an fn parts them the other way
-    (a negative statistic), which the one-sided test never names."""
+    (a negative statistic, a twin below), which is not named: the slips last
+    as long as the baseline's would only at an fn over a quarter lower."""
     from lieng.analysis.synth import synthesize
     from lieng.diagnose import diagnose, read_record, record_from_arrays
 

@@ -506,6 +506,15 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         withheld = {"twin_branch": why}
         warnings.append(why + ": the twin-branch evidence is withheld (check --fn; a load that follows the motion "
                               "also shortens the slips)")
+    # and the other way: slips that outlast the baseline's at the given fn as the baseline's would only at an fn
+    # a quarter lower say that fn is given too high, which parts the branches the other way, like a twin below:
+    # its side below is then not named (a branch below lengthens the slips too, but by less: the bench's 13
+    # twins below last as long as the baseline's within 20 %)
+    below_off = None
+    if fn is not None and fcal is not None and fcal / fn_used < 1.0 / (1.0 + SLIPS_OFF):
+        below_off = (f"the slips last as long as the baseline's at fn = {fcal:.4g} Hz, "
+                     f"{100 * (1 - fcal / fn_used):.0f} % below fn = {fn_used:.4g} Hz (too high an fn parts the "
+                     f"branches like a twin below)")
     if 1.0 / (fn_used * pr.dt) < 15:
         warnings.append(f"{1.0 / (fn_used * pr.dt):.1f} samples per natural period: the slip-shape evidence is "
                         f"weak below about 20")
@@ -600,6 +609,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     if tw["named"] and tw["effect_size"] < 0:
         size = abs(tw["effect_size"])
         why, load_hi = below_accounted(rows, pr.y is not None)
+        why = below_off or why
         tw["below"] = {"p": float(tw["p"]), "effect_size": float(tw["effect_size"])}
         head_ = (f"the slips read a decelerating branch {size:.3g} D below the accelerating one (p = {tw['p']:.2g}, "
                  f"beyond what an error of fn within +- {100 * u_fn:.3g} % makes): a friction that lags the speed "
