@@ -52,7 +52,7 @@ def test_slips_slower_than_fn_are_read_for_a_twin_and_faster_ones_are_not(tmp_pa
     faster say fn is given too low, which parts the reverse construction's
     branches like a twin: withheld.  Too high an fn parts them the other way
     (a negative statistic, a twin below), which is not named: the slips last
-    as long as the baseline's would only at an fn over a quarter lower."""
+    as long as the baseline's would only at an fn over a fifth lower."""
     from lieng.analysis.synth import synthesize
     from lieng.diagnose import diagnose, read_record, record_from_arrays
 
