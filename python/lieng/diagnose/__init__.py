@@ -493,8 +493,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                                   "motion also moves the slips' frequency)")
         else:
             warnings.append(why + " (check --fn): slower, as a friction that grows through each slip (a twin "
-                                  "branch) or a load that follows the motion makes them; the twin-branch evidence "
-                                  "is read by the reverse construction at fn")
+                                  "branch above), one that lags the speed (below) or a load that follows the motion "
+                                  "makes them; the twin-branch evidence is read by the reverse construction at fn")
     if not withheld and fn is not None and fcal is not None and fcal / fn_used - 1.0 > SLIPS_OFF:
         # the same reading by the slips' duration rather than their arcs' frequency: the baseline's slips at
         # the given fn outlast the record's as a baseline at a higher fn would not (a load that stiffens the
