@@ -507,9 +507,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         warnings.append(why + ": the twin-branch evidence is withheld (check --fn; a load that follows the motion "
                               "also shortens the slips)")
     # and the other way: slips that outlast the baseline's at the given fn as the baseline's would only at an fn
-    # a fifth lower (the given one a quarter above it: SLIPS_OFF) say that fn is given too high, which parts the branches the other way, like a twin below:
-    # its side below is then not named (a branch below lengthens the slips too, but by less: the bench's 13
-    # twins below last as long as the baseline's within 20 %)
+    # a fifth lower (the given one a quarter above it: SLIPS_OFF) say that fn is given too high, which parts the
+    # branches the other way, like a twin below: its side below is then not named (a branch below lengthens the
+    # slips too, but by less: the bench's 13 twins below last as long as the baseline's within 20 %)
     below_off = None
     if fn is not None and fcal is not None and fcal / fn_used < 1.0 / (1.0 + SLIPS_OFF):
         below_off = (f"the slips last as long as the baseline's at fn = {fcal:.4g} Hz, "

@@ -165,12 +165,13 @@ def noise_sd(s0: float, se: float, n: int) -> float:
 
 def fn_sensitivity(v, e, u: float):
     """How a statistic follows the natural frequency: the replicates' values
-    ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, fb = fn / (1 - w),
-    w uniform within +-u).  Returns (m0, s0, band) when the slope is significant (beyond twice
-    its standard error): the null mean at the nominal fn, the spread about
-    the line (the noise alone) and the largest shift an fn error within u
-    makes (the true fn as far as fn / (1 - u), an error of u / (1 - u)),
-    u / (1 - u) |slope|; None otherwise."""
+    ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, fb =
+    fn / (1 - w), w uniform within +-u).  Returns (m0, s0, band) when the
+    slope is significant (beyond twice its standard error): the null mean at
+    the nominal fn, the spread about the line (the noise alone) and the
+    largest shift an fn error within u makes (the true fn as far as
+    fn / (1 - u), an error of u / (1 - u)), u / (1 - u) |slope|; None
+    otherwise."""
     if e is None or u <= 0 or v.size < 8 or not np.ptp(e) > 0:
         return None
     A = np.column_stack([np.ones(e.size), e - e.mean()])
@@ -285,8 +286,9 @@ def calibrate_two_way(k: str, S: float, se: float, v, e=None, u: float = 0.0, re
         return calibrate_side(k, None, S, se, v, e, u, readings, alt)
     up = calibrate_side(k, 1, S, se, v, e, u, readings, alt)
     dn = calibrate_side(k, -1, S, se, v, e, u, readings, alt)
-    m0, s0, d, den, z, p, band, rb = up if up[5] <= dn[5] else dn
-    return m0, s0, d, den, (z if up[5] <= dn[5] else -z), min(1.0, 2.0 * p), band, rb
+    g = 1 if up[5] <= dn[5] else -1
+    m0, s0, d, den, z, p, band, rb = up if g > 0 else dn
+    return m0, s0, d, den, g * z, min(1.0, 2.0 * p), band, rb
 
 
 def below_accounted(rows: dict, normal_recorded: bool) -> tuple:

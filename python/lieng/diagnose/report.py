@@ -78,8 +78,9 @@ def write_outputs(d, outdir, source: str, plots: bool = True) -> list:
         lines += ["## Evidence", "",
                   "Each statistic against its distribution under the fitted baseline (parametric bootstrap, "
                   f"{d.n_replicates} replicates; fn drawn within its uncertainty); p one-sided for effects with a "
-                  "direction (the twin branch both ways: each side one-sided, the better side's p doubled); Holm over the candidates at family-wise 0.05; named = significant, at least the "
-                  "relevance margin and confirmed by prediction (its extension's held-out gain above 0 at 90 %); "
+                  "direction (the twin branch both ways: each side one-sided, the better side's p doubled); Holm "
+                  "over the candidates at family-wise 0.05; named = significant, at least the relevance margin and "
+                  "confirmed by prediction (its extension's held-out gain above 0 at 90 %); "
                   "detected = the first two without the third.", "",
                   "| candidate | statistic | null mean | null sd | record se | effect size | z | p | margin | named |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
