@@ -130,3 +130,30 @@ def test_a_decelerating_branch_below_the_accelerating_one_is_named_where_nothing
     assert any("below the accelerating one" in n and "no normal channel" in n for n in d.notes)
     e = run("none")
     assert e.effect == "none" and not e.evidence["twin_branch"]["named"]
+
+
+@pytest.mark.slow
+def test_a_recorded_crank_drive_whose_speed_wanders_is_named_and_a_stepped_programme_is_not(tmp_path):
+    """A Scotch-yoke tribometer whose crank speed is modulated (crank_srv's
+    drive_modulation, 24-27 % at 0.3-1.4 times the stroke rate, written by a
+    helper session that had not read the diagnosis) records the modulated
+    drive itself: the sticks follow it and say nothing, the drive is read
+    against its steady course, and the model on the recorded drive predicts
+    the held-out cycles better than on the drive made steady.  The
+    effect-free record and a stage that steps its speed 4-8x between strokes
+    (recip_trapezoid's effect-free seed 2: a programme, not a modulation)
+    name nothing."""
+    from lieng.diagnose import diagnose, read_record
+
+    def run(gen, case, seed):
+        truth = GENS[gen].write_record(case, seed, str(tmp_path), B.NUISANCES[seed % 7])
+        a = B.parse_args(truth["args"])
+        return diagnose(read_record(truth["file"], v0=a.v0, stiffness=a.stiffness), a.fn)
+
+    for seed in (0, 2):
+        d = run("crank_srv", "drive_modulation", seed)
+        assert d.effect == "drive_modulation" and d.gain >= 0.3, (seed, d.effect, d.gain)
+        assert d.effects[0]["extension"].startswith("the recorded drive")
+        assert 0.1 < d.evidence["drive_modulation"]["effect_size"] < 0.43
+    assert run("crank_srv", "none", 0).effect == "none"
+    assert run("recip_trapezoid", "none", 2).effect == "none"

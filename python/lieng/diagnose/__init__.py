@@ -533,6 +533,10 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         base_all.y_c = y_on_motion(pr.x, c.v, pr.y)
     # the slips are arcs of a free oscillation near fn when their own frequency was found within 25 % of it
     arcs = fd is not None and abs(fd / fn_used - 1.0) <= 0.25
+    if pr.vd_steady is not None:
+        notes.append("the drive is recorded and reverses: a modulation of its speed is read on the drive itself, "
+                     "against its steady course (at each place on the track, the median speed of the strokes of "
+                     "that direction run at a like speed), not on the sticks, which follow whatever it does")
     st, se, aux = statistics(pr, c, fn_used, y_is_force=rec.y_is_force, arcs=arcs)
     # the evidence is calibrated by replicates recorded through the rig's resonance where one rings; it may be
     # a second mode of the rig, which shapes the slips otherwise than a sensor does: the baseline without it is
@@ -676,6 +680,15 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                 if j not in trended:
                     trended[j] = level_trend(b, pr, c, win)
                 b = trended[j]
+            if k == "drive_modulation" and pr.vd_steady is not None:
+                # a recorded drive whose speed wanders: the baseline already runs on it; the comparison is
+                # the same model on the drive made steady (the strokes' median speed along the track)
+                steady = b.copy(drv_steady=True)
+                res = (b, train.error(b), train.error(steady), [b])
+                fits.append((part[2], part[3], steady, b))
+                formed.append(True)
+                first = first or (*res, steady)
+                continue
             res = _extend(k, b, train, pr, c, fn_used, stk, aux_ext, win, trough)
             fits.append((part[2], part[3], b, res[0]))
             formed.append(bool(res[3]))
@@ -691,7 +704,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0
         r = rows[k]
-        ext = base if ext is b0 else ext
+        recorded_drive = k == "drive_modulation" and b0.drv_steady
+        ext = base if ext is b0 or recorded_drive else ext
         fitted[k] = (ext, g, imp, bool(cands))
         effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
                                 "p": r["p"], "z": r["z"], "gain": g["gain"], "gain_interval_90": g["interval"],
@@ -701,7 +715,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                                 "held_out_scatter_share": g["scatter_share"],
                                 "training_improvement": imp,
                                 "baseline_offset_trend_per_s": b0.offset,
-                                "extension": "fitted" if ext is not base else
+                                "extension": "the recorded drive, against the same model on the drive made "
+                                "steady (each direction's median stroke speed along the track)" if recorded_drive
+                                else "fitted" if ext is not base else
                                 ("none better than the baseline on the training part" if cands else
                                  "none available")}))
     first = rivals(pr, base, fitted, fn_used, u_fn, st, rows, named, effects, notes, rec.y_is_force, arcs,
@@ -712,7 +728,8 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     detected = []
     for e in list(effects):
         k = e["effect"]
-        why = unconfirmed(fitted[k][1], fitted[k][3], direct=(k == "load_variation" and rec.y_is_force))
+        why = unconfirmed(fitted[k][1], fitted[k][3], direct=(k == "load_variation" and rec.y_is_force)
+                          or (k == "drive_modulation" and pr.vd_steady is not None))
         if why is None:
             continue
         rows[k]["named"] = False

@@ -79,6 +79,7 @@ class Params:
     drv_a: float = 0.0             # vd *= 1 + a sin(2 pi f t + ph)
     drv_f: float = 0.0
     drv_ph: float = 0.0
+    drv_steady: bool = False       # on a recorded reciprocating drive made steady (Prepared.vd_steady)
     drift: float = 0.0             # friction level: load *= 1 + drift (t - drift_t0)
     drift_t0: float = 0.0
     level_a: float = 0.0           # ... * (1 + level_a sin(2 pi level_f travel + level_ph)), travel in mm
@@ -169,8 +170,10 @@ def stuck_for(t, state, rest: float = 0.0) -> float:
 
 def model_drive(pr: Prepared, p: Params, sl: slice):
     """The drive velocity the model ``p`` runs on over the samples ``sl``:
-    the record's, modulated as ``p`` says (``drv_a``)."""
-    vdd = pr.vd[sl].astype(float).copy()
+    the record's (or, with ``drv_steady``, its steady course,
+    :func:`.segment.steady_drive`), modulated as ``p`` says (``drv_a``)."""
+    src = pr.vd_steady if p.drv_steady and pr.vd_steady is not None else pr.vd
+    vdd = src[sl].astype(float).copy()
     if p.drv_a:
         vdd = vdd * (1.0 + p.drv_a * _sin(pr.t[sl], p.drv_f, p.drv_ph))
     return vdd

@@ -66,7 +66,10 @@ Their distributions under the fitted baseline come from :mod:`.decide`.
     explains most of its variance (frequencies from two cycles per record
     to half the stick rate); calibrated within the record by a permutation
     test (under a constant drive the sticks are exchangeable), so scatter
-    without a period is not a modulation.
+    without a period is not a modulation.  A recorded reciprocating drive
+    (a crank's, a cam's) is read itself instead: its speed over its steady
+    course (each direction's median stroke at each place on the track,
+    :func:`.segment.drive_ratios`), averaged over quarter periods.
 ``friction_drift``
     The friction level (mean of peak and trough per cycle) fitted by a
     linear trend in time plus the sinusoid in the drive's travel that
@@ -100,8 +103,8 @@ from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
 from lieng.diagnose.signals import (_binned_anova, _jackknife, directions, drive_scan, level_fit,
                                      line_fit, lowpass, position_anova, refine_line, spectral_line, y_locked)
-from lieng.diagnose.segment import (Cycles, Prepared, creep_pairs, reversal_ramp, savgol3, savgol3_kernels,
-                                    slip_arcs, stick_part, stick_ratios)
+from lieng.diagnose.segment import (Cycles, Prepared, creep_pairs, drive_ratios, reversal_ramp, savgol3,
+                                    savgol3_kernels, slip_arcs, stick_part, stick_ratios)
 
 __all__ = ["CANDIDATES", "ONE_SIDED", "MARGIN", "UPPER", "statistics", "fn_readings", "lowpass"]
 
@@ -602,7 +605,9 @@ def _stick_series(pr: Prepared, c: Cycles):
 
 
 def _drive(pr: Prepared, c: Cycles, fn: float, nperm: int = 199):
-    t, r = _stick_series(pr, c)
+    # a recorded reciprocating drive is read itself, over its steady course (the stuck slider follows the
+    # recorded drive whatever it does: the sticks over it say nothing of its modulation); otherwise the sticks
+    t, r = drive_ratios(pr, c) if pr.vd_steady is not None else _stick_series(pr, c)
     per = c.periods(pr.t)
     if r.size < 8 or per.size < 2:
         return 0.0, math.inf, None, 0.0

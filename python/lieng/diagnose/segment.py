@@ -109,6 +109,10 @@ class Prepared:
     pos: np.ndarray | None = None
     #: the step x is quantised to (mm; :func:`.read.quantum`), 0 when it is not
     quantum: float = 0.0
+    #: a recorded reciprocating drive made steady (:func:`steady_drive`), or None
+    vd_steady: np.ndarray | None = None
+    #: the samples of the strokes whose steady course is read from strokes like them (:func:`steady_drive`)
+    steady_read: np.ndarray | None = None
 
     def stroke_slices(self):
         return [slice(s.j0, s.j0 + s.n) for s in self.strokes]
@@ -127,7 +131,8 @@ def crop(p: Prepared, a: int, b: int) -> Prepared:
             strokes.append(Stroke(i0=i0, i1=i0 + (hi - lo), sign=s.sign, j0=lo - a))
     return Prepared(t=p.t[a:b], x=p.x[a:b], vd=p.vd[a:b], y=None if p.y is None else p.y[a:b], strokes=strokes,
                     dt=p.dt, flipped=p.flipped, notes=[], pos=None if p.pos is None else p.pos[a:b],
-                    quantum=p.quantum)
+                    quantum=p.quantum, vd_steady=None if p.vd_steady is None else p.vd_steady[a:b],
+                    steady_read=None if p.steady_read is None else p.steady_read[a:b])
 
 
 def head(p: Prepared, nmax: int) -> Prepared:
@@ -513,8 +518,131 @@ def prepare(rec: Record) -> Prepared:
         notes.append(f"{len(st)} strokes ({len(st) - nb} forward, {nb} backward), each turned forward")
     track = travel(rec.vd, dt)
     pos = np.concatenate([track[s.i0:s.i1] for s in st])
-    return Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
-                    strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos, quantum=quantum(rec.x))
+    pr = Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
+                  strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos, quantum=quantum(rec.x))
+    if rec.drive_recorded:
+        st = steady_drive(pr)
+        if st is not None:
+            pr.vd_steady, pr.steady_read = st
+    return pr
+
+
+#: a recorded reciprocating drive is made steady (:func:`steady_drive`) from at
+#: least this many strokes in each direction
+STEADY_STROKES = 2
+#: ... over this many bins of the track
+STEADY_BINS = 64
+#: strokes run at speeds within this factor of each other are alike (:func:`steady_drive`): a programme's
+#: steps are larger; a modulation of the speed moves a stroke's by less
+STEADY_LIKE = 1.25
+
+
+def steady_drive(pr: Prepared):
+    """A recorded reciprocating drive made steady: at each sample, the
+    median over the strokes of its direction run at a like speed (each
+    stroke's own speed, its mean where it runs at least DRIVE_RATIO_FLOOR of
+    its fastest, within STEADY_LIKE of each other's) of their speed at that
+    position on the track (each stroke's mean in STEADY_BINS bins of the
+    track, linear between the bins' middles).  A crank, a cam or a
+    trapezoidal programme repeats its speed along the track stroke after
+    stroke, at each of the speeds it steps between; a drive whose speed
+    wanders (a motor's speed modulated) does not, and the recorded drive
+    over this is its modulation (:func:`drive_ratios`).  A stroke with
+    fewer than STEADY_STROKES like it gets the median of its direction's
+    strokes' shapes (each over its own speed) times its own speed, and is
+    not read for a modulation.  Returns (the steady speed, the mask of the
+    samples read), or None where a direction has fewer than STEADY_STROKES
+    strokes."""
+    if pr.pos is None or len(pr.strokes) < 2 * STEADY_STROKES:
+        return None
+    lo, hi = float(np.min(pr.pos)), float(np.max(pr.pos))
+    if not hi > lo:
+        return None
+    edges = np.linspace(lo, hi, STEADY_BINS + 1)
+    mid = 0.5 * (edges[1:] + edges[:-1])
+    b = np.clip(np.digitize(pr.pos, edges) - 1, 0, STEADY_BINS - 1)
+    speed = np.abs(pr.vd)
+    scale = np.ones(pr.t.size)
+    for s in pr.strokes:
+        sp = speed[s.j0:s.j0 + s.n]
+        fast = sp >= DRIVE_RATIO_FLOOR * float(np.max(sp))
+        m = float(np.mean(sp[fast])) if np.any(fast) else 0.0
+        if not m > 0:
+            return None
+        scale[s.j0:s.j0 + s.n] = m
+    out = np.zeros(pr.t.size)
+    read = np.zeros(pr.t.size, bool)
+
+    def course(group, own: bool):
+        """The median of ``group``'s strokes' speeds along the track (with ``own``, each over its own
+        speed, and the median laid on each times its own), laid on each of them."""
+        u = speed / scale if own else speed
+        M = np.full((len(group), STEADY_BINS), np.nan)
+        for i, s in enumerate(group):
+            sl = slice(s.j0, s.j0 + s.n)
+            cnt = np.bincount(b[sl], minlength=STEADY_BINS)
+            tot = np.bincount(b[sl], weights=u[sl], minlength=STEADY_BINS)
+            M[i, cnt > 0] = tot[cnt > 0] / cnt[cnt > 0]
+        seen = np.sum(np.isfinite(M), axis=0) > 0
+        if np.count_nonzero(seen) < 2:
+            return False
+        pat = np.nanmedian(M[:, seen], axis=0)
+        for s in group:
+            sl = slice(s.j0, s.j0 + s.n)
+            out[sl] = np.interp(pr.pos[sl], mid[seen], pat) * (scale[sl] if own else 1.0)
+        return True
+
+    for sign in (1, -1):
+        ss = sorted((s for s in pr.strokes if s.sign == sign), key=lambda s: scale[s.j0])
+        if not ss:
+            continue
+        if len(ss) < STEADY_STROKES or not course(ss, True):
+            return None
+        # the strokes run at a like speed, read against each other
+        groups, cur = [], [ss[0]]
+        for s in ss[1:]:
+            if scale[s.j0] <= STEADY_LIKE * scale[cur[0].j0]:
+                cur.append(s)
+            else:
+                groups.append(cur)
+                cur = [s]
+        groups.append(cur)
+        for g in groups:
+            if len(g) >= STEADY_STROKES and course(g, False):
+                for s in g:
+                    read[s.j0:s.j0 + s.n] = True
+    return out, read
+
+
+#: a stroke's own speed, and the drive's ratio to its steady course, are read
+#: where the stroke runs at least this share of its fastest (not in the ramps
+#: and reversals: a programme's ramp may keep its acceleration, not its shape,
+#: when the speed steps)
+DRIVE_RATIO_FLOOR = 0.7
+
+
+def drive_ratios(pr: Prepared, c: Cycles):
+    """A recorded reciprocating drive over its steady course
+    (:func:`steady_drive`), averaged over runs of a quarter of the mean
+    stick-slip period (within each stroke, where its steady speed is at
+    least DRIVE_RATIO_FLOOR of the stroke's fastest): (times, ratios),
+    empty without a steady drive."""
+    st = pr.vd_steady
+    per = c.periods(pr.t)
+    if st is None or per.size < 2 or not np.max(st) > 0:
+        return np.zeros(0), np.zeros(0)
+    run = max(5, int(round(float(np.mean(per)) / 4.0 / pr.dt)))
+    tt, rr = [], []
+    for s in pr.strokes:
+        idx = np.arange(s.j0, s.j0 + s.n)
+        if pr.steady_read is not None and not np.all(pr.steady_read[idx]):
+            continue
+        idx = idx[st[idx] >= DRIVE_RATIO_FLOOR * float(np.max(st[idx]))]
+        for k in range(0, idx.size - run + 1, run):
+            q = idx[k:k + run]
+            tt.append(float(np.mean(pr.t[q])))
+            rr.append(float(np.mean(np.abs(pr.vd[q]) / st[q])))
+    return np.asarray(tt), np.asarray(rr)
 
 
 def _zigzag_fast(x, h):
