@@ -521,9 +521,9 @@ def prepare(rec: Record) -> Prepared:
     pr = Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
                   strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos, quantum=quantum(rec.x))
     if rec.drive_recorded:
-        st = steady_drive(pr)
-        if st is not None:
-            pr.vd_steady, pr.steady_read = st
+        steady = steady_drive(pr)
+        if steady is not None:
+            pr.vd_steady, pr.steady_read = steady
     return pr
 
 
