@@ -135,7 +135,7 @@ def test_a_decelerating_branch_below_the_accelerating_one_is_named_where_nothing
 @pytest.mark.slow
 def test_a_recorded_crank_drive_whose_speed_wanders_is_named_and_a_stepped_programme_is_not(tmp_path):
     """A Scotch-yoke tribometer whose crank speed is modulated (crank_srv's
-    drive_modulation, 24-27 % at 0.3-1.4 times the stroke rate, written by a
+    drive_modulation, 26-27 % at 1.05 and 0.8 times the stroke rate, written by a
     helper session that had not read the diagnosis) records the modulated
     drive itself: the sticks follow it and say nothing, the drive is read
     against its steady course, and the model on the recorded drive predicts
@@ -154,6 +154,8 @@ def test_a_recorded_crank_drive_whose_speed_wanders_is_named_and_a_stepped_progr
         d = run("crank_srv", "drive_modulation", seed)
         assert d.effect == "drive_modulation" and d.gain >= 0.3, (seed, d.effect, d.gain)
         assert d.effects[0]["extension"].startswith("the recorded drive")
-        assert 0.1 < d.evidence["drive_modulation"]["effect_size"] < 0.43
+        # (the size: the sinusoid in the drive over its steady course, which the strokes' median takes part of;
+        # at least the 5 % margin, under the generator's largest modulation)
+        assert 0.05 <= d.evidence["drive_modulation"]["effect_size"] < 0.43
     assert run("crank_srv", "none", 0).effect == "none"
     assert run("recip_trapezoid", "none", 2).effect == "none"
