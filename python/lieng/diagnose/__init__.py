@@ -683,11 +683,11 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             if k == "drive_modulation" and pr.vd_steady is not None:
                 # a recorded drive whose speed wanders: the baseline already runs on it; the comparison is
                 # the same model on the drive made steady (the strokes' median speed along the track)
+                # (the training errors only for the first fold's, the one reported: each simulates its part)
                 steady = b.copy(drv_steady=True)
-                res = (b, train.error(b), train.error(steady), [b])
                 fits.append((part[2], part[3], steady, b))
                 formed.append(True)
-                first = first or (*res, steady)
+                first = first or (b, train.error(b), train.error(steady), [b], steady)
                 continue
             res = _extend(k, b, train, pr, c, fn_used, stk, aux_ext, win, trough)
             fits.append((part[2], part[3], b, res[0]))
