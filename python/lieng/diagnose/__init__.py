@@ -533,7 +533,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         base_all.y_c = y_on_motion(pr.x, c.v, pr.y)
     # the slips are arcs of a free oscillation near fn when their own frequency was found within 25 % of it
     arcs = fd is not None and abs(fd / fn_used - 1.0) <= 0.25
-    if pr.vd_steady is not None:
+    # a recorded drive that reverses: its modulation is read on the drive itself (:func:`.segment.steady_drive`)
+    drive_read = pr.vd_steady is not None
+    if drive_read:
         notes.append("the drive is recorded and reverses: a modulation of its speed is read on the drive itself, "
                      "against its steady course (at each place on the track, the median speed of the strokes of "
                      "that direction run at a like speed), not on the sticks, which follow whatever it does")
@@ -680,7 +682,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
                 if j not in trended:
                     trended[j] = level_trend(b, pr, c, win)
                 b = trended[j]
-            if k == "drive_modulation" and pr.vd_steady is not None:
+            if k == "drive_modulation" and drive_read:
                 # a recorded drive whose speed wanders: the baseline already runs on it; the comparison is
                 # the same model on the drive made steady (the strokes' median speed along the track)
                 # (the training errors only for the first fold's, the one reported: each simulates its part)
@@ -704,7 +706,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         # how much the extension explains of the training part: ranks the named effects
         imp = 1.0 - e_tr / e_train0 if e_train0 > 0 and math.isfinite(e_train0) else 0.0
         r = rows[k]
-        recorded_drive = k == "drive_modulation" and b0.drv_steady
+        recorded_drive = k == "drive_modulation" and drive_read
         ext = base if ext is b0 or recorded_drive else ext
         fitted[k] = (ext, g, imp, bool(cands))
         effects.append(_finite({"effect": k, "effect_size": r["effect_size"], "interval_95": r.get("interval"),
@@ -729,7 +731,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     for e in list(effects):
         k = e["effect"]
         why = unconfirmed(fitted[k][1], fitted[k][3], direct=(k == "load_variation" and rec.y_is_force)
-                          or (k == "drive_modulation" and pr.vd_steady is not None))
+                          or (k == "drive_modulation" and drive_read))
         if why is None:
             continue
         rows[k]["named"] = False
