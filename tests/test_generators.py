@@ -133,6 +133,25 @@ def test_a_decelerating_branch_below_the_accelerating_one_is_named_where_nothing
 
 
 @pytest.mark.slow
+def test_a_twin_whose_branches_meet_at_low_speed_is_predicted_from_the_release(tmp_path):
+    """A bristle (LuGre) slider whose decelerating half of each slip has the
+    higher friction, gated off at low speed (lugre's twin_branch, written by
+    a helper session that had not read the diagnosis): the twin extension
+    that split the step about the baseline's characteristic from the release
+    on moved every predicted slip early (seed 0's held-out stick times
+    0.007-0.018 of the period short on average, fold by fold, the baseline's
+    within 0.012) and gained 0.26 and 0.27; split and faded in from the release, the slips start on the
+    baseline's own characteristic there and both are named with gain >= 0.3."""
+    from lieng.diagnose import diagnose, read_record
+
+    for seed in (0, 1):
+        truth = GENS["lugre"].write_record("twin_branch", seed, str(tmp_path), B.NUISANCES[seed % 7])
+        a = B.parse_args(truth["args"])
+        d = diagnose(read_record(truth["file"], v0=a.v0, stiffness=a.stiffness), a.fn)
+        assert d.effect == "twin_branch" and d.gain >= 0.3, (seed, d.effect, d.gain)
+
+
+@pytest.mark.slow
 def test_a_recorded_crank_drive_whose_speed_wanders_is_named_and_a_stepped_programme_is_not(tmp_path):
     """A Scotch-yoke tribometer whose crank speed is modulated (crank_srv's
     drive_modulation, 26-27 % at 1.05 and 0.8 times the stroke rate, written by a

@@ -485,6 +485,11 @@ def _branches(base: Params, pr: Prepared, c: Cycles, fn: float, sel) -> Params |
     return base.copy(fg=np.minimum(fa_g, base.fs), dg=fd_g - fa_g, delta=0.0)
 
 
+#: the faded twin candidate reaches its full step at this share of the characteristic table's fastest speed
+#: (stated a priori: the thesis's loops part above the lowest speeds, ch. 4.1)
+TWIN_FADE = 0.25
+
+
 def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st: dict, aux: dict,
                train: tuple) -> list:
     """Extended models for ``effect`` (the baseline plus one term), from the
@@ -506,6 +511,21 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             out.append(lvl(base.copy(delta=s * st["twin_branch"] * D)))
             # the step all on the decelerating branch: the slip starts on the baseline's characteristic
             out.append(lvl(base.copy(dg=np.full(base.sg.size, s * st["twin_branch"] * D))))
+        # the step split about the baseline's characteristic (the accelerating branch below it by half,
+        # the decelerating one above by half: the baseline's is read on both halves of the slips alike) and
+        # faded in from the release over TWIN_FADE of the table's speeds: at the release the slip starts on
+        # the baseline's own characteristic, whose value there the sticks' rounded tops fixed (a step at
+        # the release moved every predicted slip early, by 3 % of the period on `lugre`'s twins, where its
+        # branches meet at low speed); levelled, and as it comes
+        top = float(np.max(base.sg)) if base.sg.size else 0.0
+        if top > 0:
+            ramp = np.clip(base.sg / (TWIN_FADE * top), 0.0, 1.0)
+            for s in (0.6, 1.0, 1.5):
+                d = s * st["twin_branch"] * D
+                q = base.copy(fg=np.minimum(base.fg - 0.5 * d * ramp, base.fs), dg=d * ramp)
+                out.append(lvl(q))
+                if s == 1.0:
+                    out.append(q)
         # two branches of general shape (ch. 4.1's loops), each read by the reverse construction on the
         # training slips; their difference also scaled to the effect size (the reading less the baseline's
         # own)
