@@ -486,7 +486,7 @@ def _branches(base: Params, pr: Prepared, c: Cycles, fn: float, sel) -> Params |
 
 
 #: the faded twin candidate reaches its full step at this share of the characteristic table's fastest speed
-#: (stated a priori: the thesis's loops part above the lowest speeds, ch. 4.1)
+#: (stated a priori, not tuned: one value, tried once)
 TWIN_FADE = 0.25
 
 
@@ -515,7 +515,7 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
         # the decelerating one above by half: the baseline's is read on both halves of the slips alike) and
         # faded in from the release over TWIN_FADE of the table's speeds: at the release the slip starts on
         # the baseline's own characteristic, whose value there the sticks' rounded tops fixed (a step at
-        # the release moved every predicted slip early, by 3 % of the period on `lugre`'s twins, where its
+        # the release moved every predicted slip early, by up to 2 % of the period on `lugre`'s twins, where its
         # branches meet at low speed); levelled, and as it comes
         top = float(np.max(base.sg)) if base.sg.size else 0.0
         if top > 0:
