@@ -2933,7 +2933,8 @@ def test_peaks_that_scatter_set_their_own_sticks_and_are_not_read_as_ageing():
     paper-on-paper record's first 30 s, with 2 % mains hum or 1 % quantising,
     was named so).  Each peak is read against the stick the drive gives it
     from the arrest before it to the typical peak, which the peak does not
-    set (checked against the analytic durations here), and nothing is read.
+    set (checked against a rigid stick's (median peak - arrest) / v0), and
+    nothing is read.
     The same slider with holds and an ageing limit (beta ln t) is still
     named, its growth over the record's range of stick times within 20 % of
     beta ln(31 s / 1 s) over the drop."""
