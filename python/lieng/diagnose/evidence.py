@@ -399,11 +399,9 @@ def expected_sticks(pr: Prepared, c: Cycles, k) -> np.ndarray:
 
 
 def _ageing(pr: Prepared, c: Cycles, unit=None):
-    k, ts, pk = stick_times(pr, c)
+    k, _, pk = stick_times(pr, c)
     if unit is not None:
         pk = pk / unit[c.peak_i[k + 1]]   # the static limit per unit load (Amontons)
-    if ts.size < 4:
-        return 0.0, math.inf, 0.0
     # each peak against the stick it would have had at the typical peak (set by the arrest before it and the
     # drive: holds, slower strokes), not its own (set by the peak: a contact that happens to hold more loads
     # longer, and a record whose peaks scatter read that as ageing: the paper-on-paper record's first 30 s with
