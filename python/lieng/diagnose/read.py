@@ -129,6 +129,8 @@ class Record:
     #: the unit of that stiffness: N/m, Pa/m for a stress record, 1/m for
     #: a friction coefficient without a normal force
     stiffness_unit: str = "N/m"
+    #: the mains hum lines removed from the record's channels (Hz; :func:`condition`)
+    hum_hz: tuple = ()
     #: the drive's direction was read from the force's side
     #: (:func:`.segment.drive_from_force`): x already rises with it
     drive_from_force: bool = False
@@ -1579,12 +1581,16 @@ def _mains(lines) -> float | None:
     channels (:func:`_hum_lines`, pooled): a grid runs at 50 or at 60 Hz,
     never both, so the lines of the other family are the record's own (a
     mode near 100 or 150 Hz).  The family whose fundamental was found,
-    then the one with more lines; None when none was found."""
+    then the one with more lines, then the one whose lines lie closer to
+    its exact harmonics (relative, the mean of |f / (base h) - 1|: a grid
+    holds its frequency, a line of the record's own at 99.83 Hz is not a
+    50 Hz grid's); None when none was found."""
     if not lines:
         return None
-    score = {base: (any(h == 1 for b, h, _ in lines if b == base), sum(1 for b, _, _ in lines if b == base))
+    score = {base: (any(h == 1 for b, h, _ in lines if b == base), sum(1 for b, _, _ in lines if b == base),
+                    -float(np.mean([abs(ln[0] / (b * h) - 1.0) for b, h, ln in lines if b == base])))
              for base in {b for b, _, _ in lines}}
-    return max(score, key=lambda b: score[b])
+    return max(sorted(score), key=lambda b: score[b])
 
 
 def condition(rec: Record) -> None:
@@ -1613,6 +1619,7 @@ def condition(rec: Record) -> None:
             if base != mains:
                 continue
             v = v - a * np.cos(2 * math.pi * ff * tt) - b * np.sin(2 * math.pi * ff * tt)
+            rec.hum_hz = tuple(sorted(set(rec.hum_hz) | {float(ff)}))
             rec.notes.append(f"mains hum at {ff:.2f} Hz in {name} (amplitude {amp:.3g}) removed")
         setattr(rec, name, v)
     other = sorted({ff for lines in hum.values() for base, _, (ff, _, _, _) in lines if base != mains})

@@ -113,6 +113,8 @@ class Prepared:
     vd_steady: np.ndarray | None = None
     #: the samples of the strokes whose steady course is read from strokes like them (:func:`steady_drive`)
     steady_read: np.ndarray | None = None
+    #: the mains hum lines removed from the record (Hz; :func:`.read.condition`): a line read there is the hum's
+    hum_hz: tuple = ()
 
     def stroke_slices(self):
         return [slice(s.j0, s.j0 + s.n) for s in self.strokes]
@@ -132,7 +134,7 @@ def crop(p: Prepared, a: int, b: int) -> Prepared:
     return Prepared(t=p.t[a:b], x=p.x[a:b], vd=p.vd[a:b], y=None if p.y is None else p.y[a:b], strokes=strokes,
                     dt=p.dt, flipped=p.flipped, notes=[], pos=None if p.pos is None else p.pos[a:b],
                     quantum=p.quantum, vd_steady=None if p.vd_steady is None else p.vd_steady[a:b],
-                    steady_read=None if p.steady_read is None else p.steady_read[a:b])
+                    steady_read=None if p.steady_read is None else p.steady_read[a:b], hum_hz=p.hum_hz)
 
 
 def head(p: Prepared, nmax: int) -> Prepared:
@@ -519,7 +521,8 @@ def prepare(rec: Record) -> Prepared:
     track = travel(rec.vd, dt)
     pos = np.concatenate([track[s.i0:s.i1] for s in st])
     pr = Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
-                  strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos, quantum=quantum(rec.x))
+                  strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos, quantum=quantum(rec.x),
+                  hum_hz=tuple(getattr(rec, "hum_hz", ())))
     if rec.drive_recorded:
         steady = steady_drive(pr)
         if steady is not None:

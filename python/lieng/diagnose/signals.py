@@ -64,7 +64,8 @@ def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float =
     (by more than two bins, and by more than ``jitter`` times the harmonic's
     frequency, at most a fifth of f0: a stick-slip whose period wanders by a
     relative ``jitter`` spreads its h-th harmonic over h times that), and
-    off the frequencies ``exclude`` (by more than three bins, as mains hum):
+    off the frequencies ``exclude`` (by more than three bins: the record's
+    mains hum, removed from it, and lines already passed over):
     (frequency, amplitude, local signal-to-noise of the line), from a
     Hann-windowed FFT.  ``by="snr"``: the line that stands
     highest above its neighbourhood (the mean amplitude 4 to 30 bins either
@@ -77,8 +78,7 @@ def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float =
     f = np.fft.rfftfreq(n, dt)
     amp = 2 * np.abs(S) / w.sum()
     ok = (f > fmin) & (f < 0.49 / dt)
-    hum = [base * h for base in (50.0, 60.0) for h in range(1, 8)]       # mains hum is not physics
-    for fx in (*hum, *exclude):
+    for fx in exclude:
         ok &= np.abs(f - fx) > 3.0 / (n * dt)
     if f0 is not None and f0 > 0:
         h = np.round(f / f0)
