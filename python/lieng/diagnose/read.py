@@ -110,6 +110,10 @@ class Record:
         What was done to the data (resampling, spikes, hum).
     warnings : list of str
         What in the data may mislead the diagnosis (a sensor at its limit).
+    hum_hz : tuple of float
+        The mains hum lines removed from the channels (Hz): a line read
+        there later is the hum's; one at a mains frequency elsewhere (a
+        shaker's, a motor's) is read as any other.
     """
 
     t: np.ndarray
@@ -129,7 +133,6 @@ class Record:
     #: the unit of that stiffness: N/m, Pa/m for a stress record, 1/m for
     #: a friction coefficient without a normal force
     stiffness_unit: str = "N/m"
-    #: the mains hum lines removed from the record's channels (Hz; :func:`condition`)
     hum_hz: tuple = ()
     #: the drive's direction was read from the force's side
     #: (:func:`.segment.drive_from_force`): x already rises with it
