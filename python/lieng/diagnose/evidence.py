@@ -425,11 +425,11 @@ def _ageing(pr: Prepared, c: Cycles, unit=None):
 
 def _triggering(pr: Prepared, c: Cycles, fn: float, y, y_is_force, D):
     """(statistic, its standard error, the line's frequency, the signal the line was found in)."""
+    # the record's mains hum, removed from it, is not read (:attr:`.segment.Prepared.hum_hz`); a line at a
+    # mains frequency that was not hum, a shaker's or a motor's, is read as any other
+    hum = tuple(pr.hum_hz)
     # the harmonics' comb: the mean period (the median's error, times the harmonic's number, moved a high
     # harmonic off the exclusion), its wander the periods' spread
-    # (the record's mains hum, removed from it, is not read: :attr:`.segment.Prepared.hum_hz`; a line at a
-    # mains frequency that was not hum, a shaker's or a motor's, is read as any other)
-    hum = tuple(pr.hum_hz)
     per = c.periods(pr.t) if np.any(c.next_ok) else np.array([])
     f0 = 1.0 / float(np.mean(per)) if per.size else None
     jit = float(np.std(per) / np.mean(per)) if per.size >= 3 else 0.0
@@ -820,7 +820,7 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
         # it reads, or against it): the line's (sin, cos) coefficients on the record's times
         axis = None
         if y is not None and not y_is_force:
-            a_y, ph_y = line_fit(sig, pr.t, f_tr)
+            _, ph_y = line_fit(sig, pr.t, f_tr)
             axis = np.array([math.cos(ph_y), math.sin(ph_y)])
         eps = force_modulation(pr, sig, f_tr, abs(float(np.mean(y)))) if y_is_force else \
             trig_modulation(pr, c, fn, f_tr, D, axis=axis)

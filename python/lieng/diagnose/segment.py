@@ -522,7 +522,7 @@ def prepare(rec: Record) -> Prepared:
     pos = np.concatenate([track[s.i0:s.i1] for s in st])
     pr = Prepared(t=np.concatenate(ts), x=x, vd=vd, y=None if rec.y is None else np.concatenate(ys),
                   strokes=st, dt=dt, flipped=flipped, notes=notes, pos=pos, quantum=quantum(rec.x),
-                  hum_hz=tuple(getattr(rec, "hum_hz", ())))
+                  hum_hz=tuple(rec.hum_hz))
     if rec.drive_recorded:
         steady = steady_drive(pr)
         if steady is not None:
