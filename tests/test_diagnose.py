@@ -1478,36 +1478,6 @@ def test_a_line_the_sticks_show_too_is_no_load_modulation():
     assert np.count_nonzero(ps < 0.05) <= 7 and np.count_nonzero(ps < 0.01) <= 2, np.sort(ps)[:8]
 
 
-def test_a_load_line_in_the_normal_channel_sets_the_axis_the_friction_is_tested_along():
-    """With a normal displacement recorded, its line gives the axis the
-    friction's line in x lies on (with the load or against it): the test of
-    that one component (:func:`.evidence.axis_p`, t with n - 2 degrees of
-    freedom) holds its level where x carries only a sensor's line on that
-    very axis (30 records, the sensor's line at the load's phase: measured 1
-    below 0.05), and on a short record of a 2 % modulation (6 slips) it is
-    the stronger: p 0.008-0.009 against Hotelling's 0.022-0.028 (measured on
-    the independently stepped slider of the test above)."""
-    from lieng.diagnose.evidence import trig_modulation
-    from lieng.diagnose.segment import find_cycles, prepare
-    ps = []
-    for seed in range(30):
-        t, x, f = _forced_coulomb(0.0, sensor=0.004, seed=seed, r=3.7 + 0.37 * (seed % 5))
-        pr = prepare(record_from_arrays(t, x, 2.0))
-        c = find_cycles(pr, 10.0)
-        ps.append(trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x), axis=(1.0, 0.0))[2])
-    # binomial(30, 0.05): P(>= 5) = 0.016
-    assert np.count_nonzero(np.array(ps) < 0.05) <= 4, np.sort(ps)[:6]
-    for seed in range(2):
-        t, x, f = _forced_coulomb(0.02, seed=seed, seconds=3.0)
-        pr = prepare(record_from_arrays(t, x, 2.0))
-        c = find_cycles(pr, 10.0)
-        p2 = trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x))[2]
-        p1 = trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x), axis=(1.0, 0.0))[2]
-        # (the load's axis, against it as the friction's line in x is above fn, or with it: the same test)
-        assert p1 == pytest.approx(trig_modulation(pr, c, 10.0, f, c.amplitude(pr.x), axis=(-2.0, 0.0))[2])
-        assert p1 < 0.5 * p2 and p1 < 0.015, (p1, p2)
-
-
 def test_the_load_modulation_read_in_the_slips_has_the_loads_phase():
     """The modulation x's line implies in the slips, which the triggering
     extension starts from, with its phase: on a Coulomb slider whose load is

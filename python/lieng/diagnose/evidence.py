@@ -100,7 +100,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.special import fdtrc, ndtr, stdtr
+from scipy.special import fdtrc, ndtr
 
 from lieng.diagnose.baseline import slip_friction
 from lieng.diagnose.goodness import goodness
@@ -586,23 +586,7 @@ def hotelling_p(d, cov, dof: int) -> float:
     return float(fdtrc(2, dof, dof / (2.0 * (dof + 1)) * t2)) if math.isfinite(t2) else 1.0
 
 
-def axis_p(d, cov, axis, dof: int) -> float:
-    """The two-sided p-value of the t-test that the 2-vector ``d``
-    (covariance ``cov``) has no component along ``axis`` (a direction fixed
-    apart from ``d``'s noise), referred to Student's t with ``dof`` degrees
-    of freedom (1 when it cannot be read)."""
-    a = np.asarray(axis, float)
-    na = float(np.hypot(*a)) if a.size == 2 else 0.0
-    if dof < 1 or not (na > 0 and np.all(np.isfinite(cov)) and np.all(np.isfinite(d))):
-        return 1.0
-    u = a / na
-    var = float(u @ cov @ u)
-    if not var > 0:
-        return 1.0
-    return float(2.0 * stdtr(dof, -abs(float(u @ d)) / math.sqrt(var)))
-
-
-def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float, phase: bool = False, axis=None):
+def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float, phase: bool = False):
     """The load modulation a line at ``f`` in x implies (the ``triggering``
     effect size on a physical scale where no normal force is recorded):
     the line's vector in the slips (each slip's own arc a + b tau +
@@ -617,13 +601,7 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float, phas
     cluster-robust sandwich with each slip and each stick a cluster
     (:func:`slip_stick_lines`: any noise within a unit, white or not; a slow
     wander does not reach a line at f >> the stick-slip rate), T**2 referred
-    to F(2, n - 2).  With ``axis`` (the (sin, cos) coefficients of the
-    line a recorded normal channel shows at ``f``, on the record's times),
-    the test is of the vector's component along that axis (:func:`axis_p`,
-    two-sided, t with n - 2 degrees of freedom): a friction modulated by the
-    load the channel reads moves with it, in phase or against it (a sensor's
-    sign is not known), and a test of one component is the stronger where
-    the direction is known.  (0, inf, 1) when too few slips.  With ``phase``, also
+    to F(2, n - 2).  (0, inf, 1) when too few slips.  With ``phase``, also
     the modulation's phase ph (the load as 1 + epsilon sin(2 pi f t + ph) on
     the record's times: the friction's line is x's times 1 - (f / fn)**2,
     of either sign; 0 when too few slips)."""
@@ -648,7 +626,7 @@ def trig_modulation(pr: Prepared, c: Cycles, fn: float, f: float, D: float, phas
     cov = (v_slip + v_stick) * gain ** 2
     eps = float(np.hypot(*d))
     u = d / eps if eps > 0 else np.array([1.0, 0.0])
-    p = hotelling_p(d, cov, min(n, m) - 2) if axis is None else axis_p(d, cov, axis, min(n, m) - 2)
+    p = hotelling_p(d, cov, min(n, m) - 2)
     out = (eps, float(math.sqrt(max(float(u @ cov @ u), 0.0))), p)
     if phase:
         # (sin, cos) coefficients: the friction's line (1 - (f/fn)**2) d, its phase that of the load
@@ -816,14 +794,8 @@ def statistics(pr: Prepared, c: Cycles, fn: float, y=None, y_is_force=False, arc
         if y is None:
             sig = sig - lowpass(sig, pr.dt, 2.0 * fn)
         f_tr = refine_line(sig, pr.t, f_tr)
-        # a normal displacement's line gives the axis the friction's line in x lies on (in phase with the load
-        # it reads, or against it): the line's (sin, cos) coefficients on the record's times
-        axis = None
-        if y is not None and not y_is_force:
-            _, ph_y = line_fit(sig, pr.t, f_tr)
-            axis = np.array([math.cos(ph_y), math.sin(ph_y)])
         eps = force_modulation(pr, sig, f_tr, abs(float(np.mean(y)))) if y_is_force else \
-            trig_modulation(pr, c, fn, f_tr, D, axis=axis)
+            trig_modulation(pr, c, fn, f_tr, D)
         sizes = {"triggering": eps} if math.isfinite(eps[1]) else {}
     if size and slow and slow[0] is not None:
         # a normal force that changes along the record: the size is the friction change it explains, and
