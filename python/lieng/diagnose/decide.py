@@ -59,7 +59,7 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "fn_needed", "null_replicates", "calibrate", "calibrate_side",
+__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "at_nominal_fn", "fn_needed", "null_replicates", "calibrate", "calibrate_side",
            "calibrate_two_way", "TWO_WAY", "below_accounted", "fn_sensitivity", "decide", "misfit", "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
@@ -163,6 +163,30 @@ def noise_sd(s0: float, se: float, n: int) -> float:
     return math.sqrt(max(s0, se) ** 2 + s0 ** 2 / max(n, 1))
 
 
+def _fn_slope(v, e, u: float):
+    """The slope of the replicates' values ``v`` on their drawn fn errors
+    ``e`` and its standard error (None when they cannot be regressed)."""
+    if e is None or u <= 0 or v.size < 8 or not np.ptp(e) > 0:
+        return None
+    A = np.column_stack([np.ones(e.size), e - e.mean()])
+    co, *_ = np.linalg.lstsq(A, v, rcond=None)
+    r = v - A @ co
+    s = float(np.sqrt(np.sum(r * r) / (v.size - 2)))
+    return float(co[1]), s / float(np.sqrt(np.sum((e - e.mean()) ** 2))), float(co[0] - co[1] * e.mean()), s
+
+
+def at_nominal_fn(v, e, u: float):
+    """The replicates' values ``v`` moved to the nominal fn along their
+    regression on the drawn fn errors ``e`` where its slope is significant
+    (beyond twice its standard error; as :func:`fn_sensitivity` reads the
+    null): an alternative null is compared with the null at the same fn, its
+    spread the noise about that line, not the fn draws'."""
+    fit = _fn_slope(np.asarray(v, float), e, u)
+    if fit is None or not abs(fit[0]) > 2.0 * fit[1]:
+        return v
+    return np.asarray(v, float) - fit[0] * np.asarray(e, float)
+
+
 def fn_sensitivity(v, e, u: float):
     """How a statistic follows the natural frequency: the replicates' values
     ``v`` regressed on their drawn fn error ``e`` (fb / fn - 1, fb =
@@ -172,17 +196,13 @@ def fn_sensitivity(v, e, u: float):
     largest shift an fn error within u makes (the true fn as far as
     fn / (1 - u), an error of u / (1 - u)), u / (1 - u) |slope|; None
     otherwise."""
-    if e is None or u <= 0 or v.size < 8 or not np.ptp(e) > 0:
+    fit = _fn_slope(v, e, u)
+    if fit is None:
         return None
-    A = np.column_stack([np.ones(e.size), e - e.mean()])
-    co, *_ = np.linalg.lstsq(A, v, rcond=None)
-    r = v - A @ co
-    s = float(np.sqrt(np.sum(r * r) / (v.size - 2)))
-    se_b = s / float(np.sqrt(np.sum((e - e.mean()) ** 2)))
-    if not abs(co[1]) > 2.0 * se_b:
+    b, se_b, m0, s = fit
+    if not abs(b) > 2.0 * se_b:
         return None
-    m0 = float(co[0] - co[1] * e.mean())
-    return m0, s, u / (1.0 - u) * (abs(float(co[1])) + se_b)
+    return m0, s, u / (1.0 - u) * (abs(b) + se_b)
 
 
 def alt_shift(m0: float, s0: float, n: int, alt, one_sided: bool) -> float:
@@ -224,7 +244,9 @@ def calibrate(S: float, se: float, v, one_sided: bool, e=None, u: float = 0.0, r
     a second mode of the rig need not shape the slips as a sensor's
     resonance does), widens the band by the two nulls' difference where it
     is significant (beyond twice its standard error), towards the least
-    favourable of them."""
+    favourable of them.  (:func:`decide` passes it at the nominal fn,
+    :func:`at_nominal_fn`: both nulls follow fn alike, and the spread of
+    their fn draws would hide a difference between them.)"""
     fit = fn_sensitivity(v, e, u)
     if fit is None:
         m0, s0, band = float(np.mean(v)), float(np.std(v, ddof=1)), 0.0
@@ -367,7 +389,11 @@ def decide(st: dict, se: dict, null: dict, alpha: float = ALPHA, applicable=None
             continue
         err = float(se[k]) if math.isfinite(se[k]) else 0.0
         rd = (fn_readings or {}).get(k)
-        alt = (null_alt or {}).get(k)
+        alt = None
+        if null_alt and k in null_alt:
+            # (at the nominal fn, as the null is read)
+            va, ea = _finite_null(null_alt, k)
+            alt = at_nominal_fn(va, ea, u_fn) if va.size else None
         m0, s0, d, den, z, p, band, rb = calibrate_two_way(k, S, err, v, e, u_fn, rd, alt)
         rows[k] = dict(statistic=S, null_mean=m0, null_sd=s0, se=err, z=z, p=float(p), effect_size=d, applicable=True,
                        interval=[d - 1.96 * den, d + 1.96 * den], fn_band=band - rb)
