@@ -2676,6 +2676,27 @@ def test_a_load_that_accounts_for_the_twin_reading_names_no_twin(load_x):
     assert not d.evidence["twin_branch"]["named"], d.evidence["twin_branch"]
 
 
+@pytest.mark.slow
+def test_without_fn_a_load_along_the_record_is_read_and_a_crosstalk_is_not():
+    """Without --fn (fn from the slips, +- 15 %) the load read from a normal
+    reading is tested at the least favourable fn within that: a Coulomb
+    slider (plain NumPy) whose load follows a course of its own in time,
+    N = 1 + 0.15 sin(2 pi 0.23 t), read as y = 3 + 0.5 N, is named a load
+    variation (an fn error moves its reading by 0.001 of the drop: the
+    course does not follow x''); a normal reading that picks up x (crosstalk,
+    y = 3 + 0.3 x, the load constant) is not (an fn error moves its reading
+    by 0.36 of the drop).  Before, both were withheld without --fn."""
+    t, x, _ = _forced_coulomb(0.0, seconds=16.0, load_of=lambda s: 1.0 + 0.15 * math.sin(2 * math.pi * 0.23 * s))
+    y = 3.0 + 0.5 * (1.0 + 0.15 * np.sin(2 * math.pi * 0.23 * t)) + 0.002 * np.random.default_rng(1).standard_normal(t.size)
+    d = diagnose(record_from_arrays(t, x, 2.0, y=y))
+    assert d.effect == "load_variation" and d.gain >= 0.5, (d.effect, d.gain, d.evidence["load_variation"])
+    assert "twin_branch" in d.evidence and d.evidence["twin_branch"].get("withheld")
+    t, x, _ = _forced_coulomb(0.0, seconds=16.0)
+    y = 3.0 + 0.3 * x + 0.002 * np.random.default_rng(2).standard_normal(x.size)
+    d = diagnose(record_from_arrays(t, x, 2.0, y=y))
+    assert not d.evidence["load_variation"]["named"] and d.effect == "none", (d.effect, d.evidence["load_variation"])
+
+
 def test_slips_faster_than_the_given_fn_withhold_the_twin():
     """A load that falls as the spring stretches (N = 1 - (x - 0.8), a plain
     NumPy Coulomb slider) stiffens the slider in slip: its slips last as
