@@ -2687,7 +2687,8 @@ def test_without_fn_a_load_along_the_record_is_read_and_a_crosstalk_is_not():
     y = 3 + 0.3 x, the load constant) is not (an fn error moves its reading
     by 0.36 of the drop).  Before, both were withheld without --fn."""
     t, x, _ = _forced_coulomb(0.0, seconds=16.0, load_of=lambda s: 1.0 + 0.15 * math.sin(2 * math.pi * 0.23 * s))
-    y = 3.0 + 0.5 * (1.0 + 0.15 * np.sin(2 * math.pi * 0.23 * t)) + 0.002 * np.random.default_rng(1).standard_normal(t.size)
+    N = 1.0 + 0.15 * np.sin(2 * math.pi * 0.23 * t)
+    y = 3.0 + 0.5 * N + 0.002 * np.random.default_rng(1).standard_normal(t.size)
     d = diagnose(record_from_arrays(t, x, 2.0, y=y))
     assert d.effect == "load_variation" and d.gain >= 0.5, (d.effect, d.gain, d.evidence["load_variation"])
     assert "twin_branch" in d.evidence and d.evidence["twin_branch"].get("withheld")

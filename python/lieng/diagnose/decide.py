@@ -59,8 +59,9 @@ from lieng.diagnose.goodness import GOF, GOF_MARGIN, RIG
 from lieng.diagnose.read import noise_level
 from lieng.diagnose.segment import Prepared, find_cycles
 
-__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "at_nominal_fn", "fn_needed", "null_replicates", "calibrate", "calibrate_side",
-           "calibrate_two_way", "TWO_WAY", "below_accounted", "fn_sensitivity", "decide", "misfit", "RIVALS", "rivals"]
+__all__ = ["ALPHA", "FN_RATIO", "alt_shift", "at_nominal_fn", "fn_needed", "null_replicates", "calibrate",
+           "calibrate_side", "calibrate_two_way", "TWO_WAY", "below_accounted", "fn_sensitivity", "decide", "misfit",
+           "RIVALS", "rivals"]
 
 #: family-wise false-alarm rate
 ALPHA = 0.05
