@@ -14,6 +14,7 @@ record.
     python tests/benchmarks/bench_diagnose.py [--seeds 8] [--only lugre,synth] [--cases none,twin_branch]
                                               [--json out.json] [--fn-uncertainty 0.01]
                                               [--nuisances spikes,hum] [--highpass-known]
+                                              [--without-fn]
 """
 
 from __future__ import annotations
@@ -154,6 +155,8 @@ def run_one(truth, fn_uncertainty=None, highpass_known=False):
 
 def table(results, gen):
     rows = [r for r in results if r["generator"] == gen]
+    if not rows:
+        return f"\n== {gen}: no record selected =="
     cols = list(CASES) + ["unexplained", "no_stick_slip", "friction_drift", "direction_asymmetry", "creep",
                           "error", "crash"]
     used = [c for c in cols if any(r["effect"] == c for r in rows) or c in CASES]
@@ -197,6 +200,9 @@ def main(argv=None):
     ap.add_argument("--highpass-known", action="store_true",
                     help="pass --highpass with the time constant of a record's AC-coupled force channel where its "
                          "generator states one (params tau_ca_s: a user who knows the charge amplifier's setting)")
+    ap.add_argument("--without-fn", action="store_true",
+                    help="only the records the generator gives no --fn for (fn estimated from the record; each "
+                         "record is still written, to learn its options)")
     a = ap.parse_args(argv)
     cases = [c for c in CASES if not a.cases or c in a.cases.split(",")]
     gens = generators(set(a.only.split(",")) if a.only else None)
@@ -215,6 +221,8 @@ def main(argv=None):
                     except Exception as e:  # noqa: BLE001 - the generator's failure, not the diagnosis'
                         print(f"{gname:>12} {case:>17} seed {seed}: generator failed: {type(e).__name__}: {e}",
                               file=sys.stderr, flush=True)
+                        continue
+                    if a.without_fn and "--fn" in (truth.get("args") or []):
                         continue
                     r = run_one(truth, a.fn_uncertainty, a.highpass_known)
                     r.update(generator=gname, case=case, seed=seed, nuisance=truth.get("nuisance", nu),
