@@ -107,10 +107,14 @@ def generators(only=None):
 
 
 def parse_args(args):
+    """A generator's options as ``lieng diagnose`` reads them (``--v0`` and
+    ``--stiffness`` a number, or a number and its unit: "2.5 N.mm/deg")."""
+    from lieng.cli.parser import _quantity
+
     p = argparse.ArgumentParser()
     p.add_argument("--fn", type=float)
-    p.add_argument("--v0", type=float)
-    p.add_argument("--stiffness", type=float)
+    p.add_argument("--v0", type=_quantity)
+    p.add_argument("--stiffness", type=_quantity)
     return p.parse_args(args)
 
 
