@@ -209,6 +209,31 @@ def test_a_record_without_a_time_column_reads_with_its_sampling_rate(tmp_path):
 
 
 
+@pytest.mark.parametrize("meta", ["# Sample rate: 1000 Hz\n", "Sample rate: 1 kHz\nOperator: A. N. Other\n",
+                                  "Delta_X\t0.001\n", "# Sampling interval = 1 ms\n",
+                                  "Sampling frequency (Hz);1000\n", "Scan rate,1000 S/s\n"])
+def test_a_record_without_a_time_column_reads_the_rate_its_metadata_states(tmp_path, meta):
+    """A one-channel logger's export: no time column, the sampling rate (or
+    the interval) among the metadata lines above the header, which may be
+    text or comments: read as with --rate (the same record), said with the
+    line that states it; --rate overrides it; a rate written "1,000" (a
+    thousands separator or a decimal comma?) is not guessed, and the
+    refusal names its line."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    p = tmp_path / "samples.txt"
+    p.write_text(meta + "F [N]\n" + "".join(f"{b}\n" for b in F))
+    r = read_record(p, v0=1.0, stiffness=K)
+    np.testing.assert_allclose(r.t, ref.t, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-12)
+    assert any("that line 1 states" in n and "1000 Hz" in n for n in r.notes), r.notes
+    r2 = read_record(p, v0=1.0, stiffness=K, rate=500.0)
+    assert r2.dt == pytest.approx(2e-3) and any("--rate 500 Hz" in n for n in r2.notes)
+    p.write_text("Sample rate: 1,000 Hz\nF [N]\n" + "".join(f"{b}\n" for b in F))
+    with pytest.raises(LiengInputError, match=r"line 1 \('Sample rate: 1,000 Hz'\) states a rate that is not read: "
+                                              r"it can be read two ways.*give --rate"):
+        read_record(p, v0=1.0, stiffness=K)
+
+
 def test_a_column_of_no_role_neither_refuses_nor_drops_rows(tmp_path):
     """A temperature column left empty, a comment column of words, a
     humidity column with gaps: none of them is read, so none refuses the

@@ -63,10 +63,10 @@ _NAMES = {
     "F": ("f", "friction", "force", "friction_force", "ft", "ff", "f_f", "fr", "fx", "tangential", "tangential_force",
           "ffric", "f_fric", "fric", "ffriction", "f_friction", "ftan", "f_tan", "ftang", "f_tang", "f_t", "fric_force",
           "lateral_force", "kraft", "reibkraft", "reibungskraft", "tangentialkraft", "tau", "stress", "shear_stress",
-          "tau_s"),
+          "tau_s", "tob", "torque_on_bit"),
     "mu": ("mu", "µ", "μ", "cof", "coefficient_of_friction", "friction_coefficient", "fnorm", "mu_k"),
     "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "f_n", "f_z", "normal_load", "normalkraft",
-          "sigma", "sigma_n", "normal_stress", "fnorm", "f_norm"),
+          "sigma", "sigma_n", "normal_stress", "fnorm", "f_norm", "wob", "weight_on_bit"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg", "distance",
                  "sliding_distance", "travel", "xd", "x_d", "stroke"),
 }
@@ -316,9 +316,11 @@ def _slider_and_stage(roles):
 
 #: words that name a rotary rig's twist (the torsion spring's extension) and its drive
 _TWIST_WORDS = {"deflection", "twist", "extension", "spring", "torsion", "displacement", "deformation", "windup",
-                "wind", "coupling"}
+                "wind", "coupling", "delta", "relative"}
 _ROTOR_WORDS = _STAGE_WORDS | {"input", "rotor", "spindle", "shaft", "angle", "position", "rotation", "speed",
-                               "velocity", "omega"}
+                               "velocity", "omega", "td", "topdrive"}
+#: an angular speed named for what the spring turns (a drill string's bit, a lower disc), not for the drive
+_TURNED_WORDS = {"bit", "lower", "slider", "output", "follower"}
 
 
 #: stiffnesses (N/m)
@@ -409,6 +411,14 @@ def _rotary(path, roles, tab, cols, units):
         cols["x"], units["x"] = (name, tab.columns[name] * _ANGLE[_unit_key(u)]), "mm"
         used.append(f"{name} ({u}) as the torsion spring's twist")
     drive = [(n, u) for n, u in angles if (n, u) not in twist[:1] and _words(n) & _ROTOR_WORDS]
+    turned = [(n, u) for n, u in speeds if _words(n) & _TURNED_WORDS and not _words(n) & (_STAGE_WORDS | {"top",
+                                                                                                       "td", "topdrive", "input", "upper"})]
+    if turned:
+        # the speed of what the spring turns (a bit's, a lower disc's): the slider's, not the drive's
+        speeds = [q for q in speeds if q not in turned]
+        cols.pop("v0", None) if cols.get("v0", ("",))[0] in [n for n, _ in turned] else None
+        used.append(f"{', '.join(n for n, _ in turned)} not read (the speed of what the spring turns, not the "
+                    f"drive's)")
     if speeds:
         n, u = speeds[0]
         cols["v0"], units["v0"] = (n, tab.columns[n] * _ANGULAR_VELOCITY[_speed_key(u)]), "mm/s"
@@ -714,9 +724,20 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     over = (f" (variable{'s' if len(tab.passed_over) > 1 else ''} {', '.join(tab.passed_over)[:120]} passed over: not "
             f"vectors of the record's length)"
             if tab.passed_over else "")
+    stated, unread = None, ""
+    if "t" not in cols and rate is None and tab.stated_rate is not None and tab.stated_rate[0] is not None and \
+            1.0 / DT_RANGE[1] <= tab.stated_rate[0] <= 1.0 / DT_RANGE[0]:
+        # no time column, and no --rate: the rate the instrument's metadata states (the rows evenly spaced)
+        rate, line, text = tab.stated_rate
+        stated = (f"no time column: the rows are samples {1.0 / rate:.4g} s apart, at the {rate:g} Hz that line "
+                  f"{line} states ({text!r}; --rate overrides it)")
+    elif "t" not in cols and rate is None and tab.stated_rate is not None:
+        unread = (f"; line {tab.stated_rate[1]} ({tab.stated_rate[2]!r}) states a rate that is not read: "
+                  + ("it can be read two ways" if tab.stated_rate[0] is None else
+                     f"{tab.stated_rate[0]:g} Hz is out of range"))
     if "t" not in cols and rate is None:
-        _fail(f"{path}: no time column (t or time) {where}{over}{_as_read(roles, cols)}: add one, or give --rate "
-              f"(the sampling rate, Hz)")
+        _fail(f"{path}: no time column (t or time) {where}{over}{_as_read(roles, cols)}{unread}: add one, or give "
+              f"--rate (the sampling rate, Hz)")
     mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
         else None
     if "x" not in cols and "F" not in cols:
@@ -805,7 +826,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                          serial_note, runs_note, dup_note, stamps_note) if m]
     if dated:
         notes.append(f"column {cols['t'][0]} holds date-times: read as seconds from {tab.dates[cols['t'][0]]}")
-    if rate is not None:
+    if stated:
+        notes.append(stated)
+    elif rate is not None:
         notes.append(f"--rate ignored: the record gives the time (column {cols['t'][0]})" if "t" in cols else
                      f"no time column: the rows are samples {1.0 / rate:.4g} s apart (--rate {rate:g} Hz)")
     notes.extend(tab.notes())

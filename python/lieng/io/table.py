@@ -64,6 +64,9 @@ class Table:
         #: columns logged on fewer rows, filled linearly between their values:
         #: name -> (rows with a value, rows)
         self.filled = {}
+        #: the sampling rate a line above the header states ("Sample rate: 2 kHz", "Delta_X 0.001"), for a
+        #: table without a time column: (Hz, its file line, the line's words) or None (:func:`stated_rate`)
+        self.stated_rate = None
 
     def __len__(self):
         return len(self.lines)
@@ -299,6 +302,8 @@ def _data_cells(row: str) -> tuple:
     return best
 
 
+#: a row that is one number alone (a decimal point or a decimal comma)
+_ONE_NUMBER = re.compile(r"[-+]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][-+]?\d+)?")
 #: the content lines searched for the header under an instrument's preamble
 PREAMBLE_SCAN = 200
 
@@ -438,7 +443,13 @@ def _header_after_preamble(rows, content) -> int:
     nums = [d[1] for d in data]
     i = next((i for i in range(1, len(nums)) if nums[i] >= 2 and (i + 1 == len(nums) or nums[i + 1] == nums[i])),
              None)
-    if i is None or i < 2:
+    if i is None:
+        # one column of numbers (a single channel, no time column: its rate among the metadata above): the
+        # text row above the first five rows that are one number each, when there is metadata above it
+        one = [_ONE_NUMBER.fullmatch(rows[k].strip()) is not None for k in content[:PREAMBLE_SCAN]]
+        i = next((i for i in range(2, len(one)) if all(one[i:i + 5]) and not one[i - 1]), None)
+        return 0 if i is None or _has_number(_row_cells(rows[content[i - 1]])) else i - 1
+    if i < 2:
         return 0
     width = [max(d[0], d[1]) for d in data]
     if i + 1 < len(width):
@@ -461,6 +472,52 @@ def _header_after_preamble(rows, content) -> int:
     # a header has no number in it (a data row with a word in it is a bad row, named as such); its cells split
     # as the row is written (catman's "Time  1 - default sample rate" is one TAB-separated cell, not a number)
     return 0 if _has_number(_row_cells(rows[content[h]])) else h
+
+
+#: a line that states the sampling rate: its name, then a number and a unit of frequency (the unit may
+#: stand in brackets after the name instead: "Sampling frequency (Hz);500")
+_FREQ_UNITS = r"hz|khz|mhz|s/s|ks/s|sps|ksps|samples?/s(?:ec)?"
+_TIME_UNITS = r"s|sec|ms|us|µs|ns"
+_NUMBER = r"([-+]?\d+(?:[.,]\d*)?(?:[eE][-+]?\d+)?)"
+_RATE_LINE = re.compile(r"(?:sampl\w*|scan|acquisition|acq|daq)[\s_.-]*(?:rate|frequency|freq)\b\s*"
+                        rf"(?:[\[(]\s*({_FREQ_UNITS})\s*[\])])?\W*?{_NUMBER}\s*\(?\s*({_FREQ_UNITS})?\b",
+                        re.IGNORECASE)
+#: ... or the interval between samples, a number and a unit of time
+_STEP_LINE = re.compile(r"(?:sampl\w*[\s_.-]*(?:interval|period|time|step)|delta[\s_.-]?[tx]|time[\s_.-]*"
+                        rf"(?:step|increment|interval|base)|dt)\b\s*(?:[\[(]\s*({_TIME_UNITS})\s*[\])])?\W*?"
+                        rf"{_NUMBER}\s*\(?\s*({_TIME_UNITS})?\b", re.IGNORECASE)
+_RATE_UNIT = {"": 1.0, "hz": 1.0, "khz": 1e3, "mhz": 1e6, "s/s": 1.0, "ks/s": 1e3, "sps": 1.0, "ksps": 1e3}
+_STEP_UNIT = {"": 1.0, "s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "ns": 1e-9}
+
+
+def stated_rate(lines) -> tuple | None:
+    """The sampling rate that an instrument's metadata lines state: the
+    first line naming a sampling rate or frequency ("Sample rate: 2 kHz",
+    "Sampling frequency (Hz);500", "# fs_rate = 1000 S/s") or the interval
+    between samples ("Sampling interval: 0.5 ms", "Delta_X  0.001",
+    "dt = 1e-3 s") with a positive number, in Hz.  ``lines``: (file line,
+    text) pairs.  Returns (rate, file line, the line's text), the rate None
+    where the number can be read two ways ("2,000": a thousands separator or
+    a decimal comma; not guessed), or None when no line states one."""
+    for k, text in lines:
+        for pat, units, inv in ((_RATE_LINE, _RATE_UNIT, False), (_STEP_LINE, _STEP_UNIT, True)):
+            m = pat.search(text)
+            if not m:
+                continue
+            unit = (m.group(1) or m.group(3) or "").lower()
+            unit = {"sec": "s", "samples/s": "s/s", "sample/s": "s/s", "samples/sec": "s/s",
+                    "sample/sec": "s/s"}.get(unit, unit)
+            if unit not in units:
+                continue
+            if re.fullmatch(r"[-+]?\d{1,3}(?:,\d{3})+", m.group(2)):
+                return None, k, text.strip()[:80]
+            try:
+                v = float(m.group(2).replace(",", ".")) * units[unit]
+            except ValueError:
+                continue
+            if v > 0 and math.isfinite(v):
+                return (1.0 / v if inv else v), k, text.strip()[:80]
+    return None
 
 
 def read_table(path, expect: str, missing: str = "error", unused=None, sparse=None) -> Table:
@@ -680,6 +737,8 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     tab.dropped = dropped
     tab.preamble = skipped
     tab.comments_row = comments_row
+    # (the lines above the header: the instrument's metadata and comment lines)
+    tab.stated_rate = stated_rate((k + 1, rows[k]) for k in range(0, k0) if rows[k].strip())
     if lvm is not None:
         tab.segments = lvm[3]
     for c in np.flatnonzero(thin):
