@@ -831,3 +831,83 @@ def test_a_position_that_jumps_is_a_reset_encoder_not_the_stages_travel(tmp_path
     assert any("jumps 2 times" in n for n in r.notes)
     np.testing.assert_allclose(r.vd, ref.vd, atol=0.05)
     assert not any("jumps" in n for n in ref.notes)
+
+
+def _positions():
+    """A stick-slip record as a video tracker sees it: the drive's (the pulled end's) position and the
+    slider's, whose difference is the spring's extension (``lieng synth``'s effect-free record, mm)."""
+    from lieng.analysis.synth import synthesize
+
+    rec = synthesize("none", 0)
+    assert rec.v0_col is None
+    drive = 5.0 + rec.v0 * rec.t
+    return rec, drive, drive - rec.x
+
+
+def test_a_video_trackers_two_tracks_are_told_apart_by_their_motion(tmp_path):
+    """Tracker's multi-track export ("#multi:", a row naming the tracks over
+    repeated "x  y" columns, no units): the track that stands still while
+    the other moves is the slider's, whichever comes first; the extension
+    is the other's less it (the same numbers as the spring's), said."""
+    rec, drive, slider = _positions()
+    for first, second in ((drive, slider), (slider, drive)):
+        p = tmp_path / "tracker.txt"
+        p.write_text("#multi:\n\tmass A\t\tmass B\t\nt\tx\ty\tx\ty\n" + "".join(
+            f"{a:.9g}\t{b:.9g}\t3.5\t{c:.9g}\t3.6\n" for a, b, c in zip(rec.t, first, second)))
+        r = read_record(p)
+        np.testing.assert_allclose(r.x - r.x[0], rec.x - rec.x[0], atol=1e-6)
+        assert any("told apart by their motion" in n and "mass " in n for n in r.notes), r.notes
+
+
+def test_a_trackers_pixels_are_read_at_the_scale_its_metadata_states(tmp_path):
+    """An OpenCV tracker's CSV: positions in pixels named for the block and
+    the puller, the scale in a comment line ("# scale: 0.25 mm/px"); without
+    the scale line the refusal names the column and what to add."""
+    rec, drive, slider = _positions()
+    body = "frame,time_s,block_x_px,puller_x_px\n" + "".join(
+        f"{i},{a:.9g},{b / 0.25:.9g},{c / 0.25:.9g}\n" for i, (a, b, c) in enumerate(zip(rec.t, slider, drive)))
+    p = tmp_path / "track.csv"
+    p.write_text("# video: IMG_0001.MOV 240 fps\n# scale: 0.25 mm/px (a ruler in frame)\n" + body)
+    r = read_record(p)
+    np.testing.assert_allclose(r.x - r.x[0], rec.x - rec.x[0], atol=1e-6)
+    assert any("0.25 mm per pixel" in n for n in r.notes), r.notes
+    p.write_text(body)
+    with pytest.raises(LiengInputError, match=r"column block_x_px: in pixels, and no line above the header states "
+                                              r"the scale"):
+        read_record(p)
+
+
+def test_a_lone_position_beside_v0_is_the_sliders_whichever_way_its_axis_counts(tmp_path):
+    """A phone app's or a laser's one position column and --v0: the
+    slider's position (a drive column would make --v0 needless), the
+    extension the drive's travel less it; an axis counting against the
+    drive (a camera's image coordinates) is turned, and said."""
+    rec, drive, slider = _positions()
+    for sign in (1.0, -1.0):
+        p = tmp_path / "phone.csv"
+        p.write_text('"Time (s)","Position (m)"\n' + "".join(
+            f"{a:.9g},{sign * b / 1000:.12g}\n" for a, b in zip(rec.t, slider)))
+        r = read_record(p, v0=(rec.v0, "mm/s"))
+        np.testing.assert_allclose(r.x - r.x[0], rec.x - rec.x[0], atol=1e-6)
+        assert any("the record's only position, beside --v0" in n for n in r.notes), r.notes
+        assert any("runs against --v0's direction" in n for n in r.notes) == (sign < 0)
+
+
+def test_a_drill_string_rigs_columns_are_read_for_their_roles(tmp_path):
+    """A torsional drill-string rig's export: the torque on bit (TOB) is the
+    friction torque, the top drive's angle (phi_TD) the drive's, the weight
+    on bit (WOB) the normal force, and the bit's speed, the slider's own, is
+    not taken for the drive's (found by the drill_string generator, whose
+    first contact refused 13 of 48 records)."""
+    rec, drive, slider = _positions()       # read as mrad: the twist is the extension
+    k = 2.0                                 # N·m/rad
+    w = np.gradient(slider, rec.t) / 1000.0 * 60.0 / (2 * np.pi)      # rpm
+    p = tmp_path / "drill.csv"
+    p.write_text("Run,R002\nSample rate [Hz],1000\nTime [s],TOB [Nm],phi_TD [rev],Bit speed [rpm],WOB [kN]\n" + "".join(
+        f"{a:.9g},{k * x / 1000:.9g},{d / 1000 / (2 * np.pi):.12g},{v:.6g},{1.5 + 0.001 * (i % 3):.4f}\n"
+        for i, (a, x, d, v) in enumerate(zip(rec.t, rec.x, drive, w))))
+    r = read_record(p, stiffness=(k, "N.m/rad"))
+    np.testing.assert_allclose(r.x, rec.x, atol=1e-5)
+    assert r.y is not None and r.y_is_force and r.vd is not None
+    np.testing.assert_allclose(np.median(r.vd), rec.v0, rtol=0.02)
+    assert any("Bit speed not read" in n for n in r.notes), r.notes

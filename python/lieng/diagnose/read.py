@@ -288,7 +288,8 @@ def _is_angle(name: str, unit: str = "") -> bool:
 
 #: words that name the slider's own position and the drive's (stage's) position
 _SLIDER_WORDS = {"slider", "pin", "mass", "block", "carriage", "specimen", "sample", "rider", "body", "puck", "sled"}
-_STAGE_WORDS = {"stage", "drive", "table", "motor", "belt", "actuator", "encoder", "driver"}
+_STAGE_WORDS = {"stage", "drive", "table", "motor", "belt", "actuator", "encoder", "driver", "puller", "cart",
+                "trolley", "winch", "pulled", "crosshead"}
 
 
 def _is_slider(name: str) -> bool:
@@ -298,20 +299,102 @@ def _is_slider(name: str) -> bool:
     return bool(words & _SLIDER_WORDS) and not words & _STAGE_WORDS
 
 
-def _slider_and_stage(roles):
+#: a position column's unit that is a video's pixel (its scale among the metadata: :attr:`.io.table.Table.stated_scale`)
+_PIXEL = ("px", "pix", "pixel", "pixels")
+
+
+def _position_scale(path, name: str, unit: str, tab) -> float:
+    """A position column's factor to mm: its length unit's, or a pixel's at the scale the metadata states
+    (refused, naming the column, without one)."""
+    if unit in _PIXEL:
+        if tab.stated_scale is None:
+            _fail(f"{path}: column {name}: in pixels, and no line above the header states the scale (mm per "
+                  f"pixel): convert the column to mm, or add a line such as '# scale: 0.25 mm/px'")
+        return tab.stated_scale[0]
+    return _scale(path, name, unit, _LENGTH, "position")
+
+
+def _position_unit(name: str, unit: str) -> str | None:
+    """A position column's length unit: the header's, or a name's last part ("block_x_mm", "cart_x_px");
+    "" for none written; None when the column is not a length (or a pixel)."""
+    u = _unit_key(unit)
+    if not u and "_" in name:
+        u = _unit_key(name.rsplit("_", 1)[1])
+        u = u if u in _LENGTH or u in _PIXEL else ""
+    return u if u in _LENGTH or u in _PIXEL else None
+
+
+def _maybe_position(name: str, unit: str) -> bool:
+    """Whether a column of no role may be a position along the track (read beside another:
+    :func:`_slider_and_stage`): a length or a pixel, named for the slider, the stage or an x coordinate (a
+    video tracker's "mass A x"), not a vertical one ("mass A y")."""
+    if _position_unit(name, unit) is None:
+        return False
+    words = set(re.split(r"[^a-z0-9]+", name.strip().lower()))
+    return bool(words & (_SLIDER_WORDS | _STAGE_WORDS | {"x", "pos", "position"})) and "y" not in words
+
+
+def _still_beside(a, b) -> tuple:
+    """How often each of two positions stands still while the other moves: (the share of windows in which
+    ``a`` moves under a tenth of ``b``'s move, and ``b`` under a tenth of ``a``'s), over windows in which the
+    two move ten of their smallest steps at the median (a video tracker's pixels).  A slider that sticks
+    stands still through its sticks while the drive runs on; the drive never stands while the slider slips
+    (a slip is a few times faster than the drive, not ten)."""
+    n = a.size
+    if n < 50:
+        return 0.0, 0.0
+    steps = [np.abs(np.diff(v)) for v in (a, b)]
+    nz = [d[d > 0] for d in steps]
+    if not all(z.size for z in nz):
+        return 0.0, 0.0
+    q = max(float(np.percentile(z, 10)) for z in nz)
+    k = 1
+    while k < max(n // 20, 1):
+        big = np.maximum(np.abs(a[k:] - a[:-k]), np.abs(b[k:] - b[:-k]))
+        if float(np.median(big)) >= 10.0 * q:
+            break
+        k = 2 * k
+    da, db = np.abs(a[k:] - a[:-k]), np.abs(b[k:] - b[:-k])
+    return float(np.mean(da < 0.1 * db)), float(np.mean(db < 0.1 * da))
+
+
+#: of two position columns named alike (a video tracker's "mass A x", "mass B x"), the slider's stands still
+#: while the other moves in at least this share of the windows, and the drive's in at most a third as many
+#: (:func:`_still_beside`)
+SLIDER_STILL_SHARE = 0.1
+
+
+def _slider_and_stage(roles, tab=None):
     """((name, unit) of the slider's position, (name, unit) of the stage's)
     when the header's columns ``roles`` ((name, role, unit) each) have
-    exactly one of each among their position columns (lengths), else None."""
-    sl, dr = [], []
+    exactly one of each among their position columns (lengths, a name's
+    last part as the unit, or pixels), else None.  Two position columns
+    whose names do not tell them apart (a video tracker's "mass A x" and
+    "mass B x"; vertical coordinates, "y", are not positions along the
+    track) are told apart by their motion when ``tab`` is given
+    (:data:`SLIDER_STILL_SHARE`)."""
+    sl, dr, other = [], [], []
     for n, role, u2 in roles:
-        if role not in ("position", "x") or _unit_key(u2) not in _LENGTH:
+        unit = _position_unit(n, u2)
+        if role not in ("position", "x", None) or unit is None or (role is None and not _maybe_position(n, u2)):
             continue
         words = set(re.split(r"[^a-z0-9]+", n.strip().lower()))
-        if _is_slider(n):
-            sl.append((n, u2))
+        if _is_slider(n) and not words & {"a", "b", "1", "2"}:
+            sl.append((n, unit))
         elif words & _STAGE_WORDS and not words & _SLIDER_WORDS:
-            dr.append((n, u2))
-    return (sl[0], dr[0]) if len(sl) == 1 and len(dr) == 1 else None
+            dr.append((n, unit))
+        else:
+            other.append((n, unit))
+    if len(sl) == 1 and len(dr) == 1:
+        return sl[0], dr[0]
+    both = sl + dr + other
+    if tab is None or len(both) != 2:
+        return None
+    share = _still_beside(*(np.asarray(tab.columns[n], float) for n, _ in both))
+    j = int(np.argmax(share))
+    if share[j] >= SLIDER_STILL_SHARE and share[1 - j] <= share[j] / 3.0:
+        return both[j], both[1 - j]
+    return None
 
 
 #: words that name a rotary rig's twist (the torsion spring's extension) and its drive
@@ -653,7 +736,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     _check_highpass(highpass)
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
-                     missing="drop", unused=lambda name, unit: _kind(name, unit) is None,
+                     missing="drop", unused=lambda name, unit: _kind(name, unit) is None and
+                     not _maybe_position(name, unit),
                      sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular"))
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
     cols, units = {}, {}
@@ -683,16 +767,24 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                      f"machine's pull test): read as the friction force that drags the slider")
     # a slider's position beside the stage's (a laser on the slider, an encoder on the stage) and no force or
     # extension: the spring's extension is their difference
-    pair = _slider_and_stage(roles) if "x" not in cols and "F" not in cols else None
+    pair = _slider_and_stage(roles, tab) if "x" not in cols and "F" not in cols else None
     notes_pair = None
     if pair is not None:
         (sn, su), (dn, du) = pair
-        ext = tab.columns[dn] * _scale(path, dn, du, _LENGTH, "position") \
-            - tab.columns[sn] * _scale(path, sn, su, _LENGTH, "position")
+        (ks, kd), scale_note = (_position_scale(path, n, u, tab) for n, u in (pair[0], pair[1])), ""
+        if su in _PIXEL or du in _PIXEL:
+            scale_note = (f" (in pixels, at the {tab.stated_scale[0]:.4g} mm per pixel that line {tab.stated_scale[1]} "
+                          f"states)")
+        elif not su and not du:
+            scale_note = " (no unit written: read as mm; the evidence is in units of the drop and does not depend on it)"
+        ext = tab.columns[dn] * kd - tab.columns[sn] * ks
         cols["x"], units["x"] = (f"{dn} - {sn}", ext), "mm"
-        cols["position"], units["position"] = (dn, tab.columns[dn]), du
-        notes_pair = (f"columns {sn} and {dn}: the slider's and the stage's positions; the spring's extension "
-                      f"x is the stage's less the slider's")
+        cols["position"], units["position"] = (dn, tab.columns[dn] * kd), "mm"
+        words = set(re.split(r"[^a-z0-9]+", f"{sn} {dn}".lower()))
+        how = "" if (_is_slider(sn) and words & _STAGE_WORDS) else " (told apart by their motion: the slider's " \
+            "stands still through its sticks, the stage's runs on)"
+        notes_pair = (f"columns {sn} and {dn}: the slider's and the stage's positions{how}; the spring's extension "
+                      f"x is the stage's less the slider's{scale_note}")
     slider_note = None
     if "x" in cols and "F" in cols and _is_slider(cols["x"][0]):
         # a force beside the slider's own position (an LVDT or laser on the slider): the force is the
@@ -740,6 +832,22 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
               f"--rate (the sampling rate, Hz)")
     mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
         else None
+    lone = None
+    if "x" not in cols and "F" not in cols and v0 is not None and "v0" not in cols:
+        # one position and --v0 (a video of the slider alone, a laser on it): the slider's position, the drive
+        # given by --v0; read as an x that follows the drive's travel (:func:`_extension_of_slider`)
+        cand = [(n, _position_unit(n, u)) for n, role, u in roles
+                if role == "position" or (role is None and _maybe_position(n, u))]
+        if len(cand) == 1 and cand[0][1] is not None:
+            n, u = cand[0]
+            cols.pop("position", None), units.pop("position", None)
+            xs = tab.columns[n] * _position_scale(path, n, u, tab)
+            if float(xs[-1] - xs[0]) * float(v0) < 0:
+                # (its axis counts the other way: a camera's image coordinates, a laser facing the slider)
+                xs = -xs
+                given.append(f"column {n} runs against --v0's direction: its sign is turned")
+            cols["x"], units["x"] = (n, xs), "mm"
+            lone = n
     if "x" not in cols and "F" not in cols:
         _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column {where}{over}"
               f"{_as_read(roles, cols)}")
@@ -907,7 +1015,11 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         _fail(f"{path}: the drive never moves (all zero): no stick-slip")
     slider = False
     if "x" in cols and "F" not in cols and pair is None:
-        x, slider = _extension_of_slider(x, vd, dt, pos, cols["x"][0], notes)
+        x, slider = _extension_of_slider(x, vd, dt, pos, cols["x"][0], notes, lone is not None)
+        if lone is not None and not slider:
+            _fail(f"{path}: column {lone}, the record's only position, is read as the slider's (--v0 gives the "
+                  f"drive), but it does not follow the drive's travel at --v0 {float(v0):g} mm/s: check --v0 and "
+                  f"the column's unit, or give the spring's extension or the force")
     zero_unknown = False
     if pair is not None or slider:
         # an extension from two positions: its zero is where their origins put it
@@ -1019,7 +1131,7 @@ SLIDER_SLOPE_MIN = 0.3
 SLIDER_MOVING = 0.75
 
 
-def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> tuple:
+def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list, lone: bool = False) -> tuple:
     """The spring's extension from a displacement column that is the
     slider's position (a laser on the slider, named x or ``laser``): it
     follows the drive's travel (one way, or back and forth on a
@@ -1057,7 +1169,7 @@ def _extension_of_slider(x, vd, dt: float, pos, name: str, notes: list) -> tuple
     notes.append(f"column {name} follows the drive's travel (slope {slope:.2f}): the slider's position, not the "
                  f"spring's extension (which rises and falls every cycle about a level); the extension is read as "
                  f"the drive's travel less it, from 0 at the first sample (the friction level is then relative "
-                 f"to that sample's)")
+                 f"to that sample's)" + ("; the record's only position, beside --v0" if lone else ""))
     return drive - (x - x[0]), True
 
 

@@ -67,6 +67,9 @@ class Table:
         #: the sampling rate a line above the header states ("Sample rate: 2 kHz", "Delta_X 0.001"), for a
         #: table without a time column: (Hz, its file line, the line's words) or None (:func:`stated_rate`)
         self.stated_rate = None
+        #: the image scale a video tracker's metadata states ("# scale: 0.23 mm/px"), for columns in pixels:
+        #: (mm per pixel, its file line, the line's words) or None (:func:`stated_scale`)
+        self.stated_scale = None
 
     def __len__(self):
         return len(self.lines)
@@ -462,8 +465,10 @@ def _header_after_preamble(rows, content) -> int:
         return h - 2
     above = rows[content[h]]
     cells = [c for c in re.split(r"[,;\t]|\s+", above.strip()) if c]
-    if h >= 1 and all(len(_unquote(c)) <= 12 for c in cells) and len(cells) <= width[i]:
-        # a row of units alone under the header ("s,N,N"): the header is the row above it
+    if h >= 1 and all(len(_unquote(c)) <= 12 for c in cells) and len(cells) <= width[i] and \
+            any(_unit_cell(_unquote(c)) for c in cells if _unquote(c).strip()):
+        # a row of units alone under the header ("s,N,N"; one of them a unit at least: a video tracker's "t  x"
+        # under its track's name is the header): the header is the row above it
         prev = rows[content[h - 1]]
         # (split as the row is written: a whitespace table's header has no comma, semicolon or TAB)
         seps = r"[,;\t]" if re.search(r"[,;\t]", prev) else r"\s+"
@@ -518,6 +523,53 @@ def stated_rate(lines) -> tuple | None:
             if v > 0 and math.isfinite(v):
                 return (1.0 / v if inv else v), k, text.strip()[:80]
     return None
+
+
+#: a line that states a video's image scale: a length per pixel, or pixels per length
+_SCALE_LINE = re.compile(rf"{_NUMBER}\s*(mm|um|µm|cm|m)\s*(?:/|per)\s*(?:px|pix|pixels?)\b|"
+                         rf"{_NUMBER}\s*(?:px|pix|pixels?)\s*(?:/|per)\s*(mm|um|µm|cm|m)\b", re.IGNORECASE)
+_SCALE_MM = {"mm": 1.0, "um": 1e-3, "µm": 1e-3, "cm": 10.0, "m": 1e3}
+
+
+def stated_scale(lines) -> tuple | None:
+    """The image scale a video tracker's metadata lines state ("# scale:
+    0.2304 mm/px", "Calibration: 4.3 pixels per mm"): (mm per pixel, file
+    line, the line's text) or None."""
+    for k, text in lines:
+        m = _SCALE_LINE.search(text)
+        if not m:
+            continue
+        try:
+            if m.group(1) is not None:
+                v = float(m.group(1).replace(",", ".")) * _SCALE_MM[m.group(2).lower()]
+            else:
+                v = _SCALE_MM[m.group(4).lower()] / float(m.group(3).replace(",", "."))
+        except (ValueError, ZeroDivisionError, KeyError):
+            continue
+        if v > 0 and math.isfinite(v):
+            return v, k, text.strip()[:80]
+    return None
+
+
+def _track_names(rows, k0: int, names: list, sep) -> list | None:
+    """A header whose names repeat (a video tracker's multi-track table:
+    ``t  x  y  x  y`` under a row naming the tracks, ``   mass A     mass B``,
+    Tracker's "#multi:" export) with each track's name before its columns'
+    ("mass A x", "mass A y", "mass B x", ...): a name in the row above
+    stands over its column and those after it up to the next; None when the
+    row above names no track over a repeated name."""
+    ka = next((k for k in range(k0 - 1, -1, -1) if rows[k].strip() and not _is_comment(rows[k])), None)
+    if ka is None or _numeric_cells(rows[ka]):
+        return None
+    cells = [_unquote(c).strip() for c in (rows[ka].split(sep) if sep else rows[ka].split())]
+    if not sep:
+        return None                       # (a whitespace row keeps no place for an empty cell)
+    over, cur = [], ""
+    for j in range(len(names)):
+        cur = cells[j] if j < len(cells) and cells[j] else cur
+        over.append(cur)
+    out = [f"{o} {n}" if o and n else n for o, n in zip(over, names)]
+    return out if len(set(out)) == len(out) else None
 
 
 def read_table(path, expect: str, missing: str = "error", unused=None, sparse=None) -> Table:
@@ -628,6 +680,9 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         units = units_c
     if lvm is not None:
         names, units = _lvm_names(names, units, lvm[1])
+    tracks = _track_names(rows, k0, names, sep) if len(set(names)) < len(names) else None
+    if tracks is not None:
+        names = tracks
     ncol = len(names)
     comma = sep != ","
     start = k0 + 1
@@ -738,7 +793,9 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     tab.preamble = skipped
     tab.comments_row = comments_row
     # (the lines above the header: the instrument's metadata and comment lines)
-    tab.stated_rate = stated_rate((k + 1, rows[k]) for k in range(0, k0) if rows[k].strip())
+    above = [(k + 1, rows[k]) for k in range(0, k0) if rows[k].strip()]
+    tab.stated_rate = stated_rate(above)
+    tab.stated_scale = stated_scale(above)
     if lvm is not None:
         tab.segments = lvm[3]
     for c in np.flatnonzero(thin):
