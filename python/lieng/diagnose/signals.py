@@ -23,6 +23,37 @@ def lowpass(y, dt, fcut):
     return np.fft.irfft(Y, y.size) + y.mean()
 
 
+def bandpass(y, dt, flo, fhi):
+    """Keep the spectrum within [flo, fhi] (FFT, zero phase), zero mean."""
+    f = np.fft.rfftfreq(y.size, dt)
+    Y = np.fft.rfft(y - y.mean())
+    Y[(f < flo) | (f > fhi)] = 0
+    return np.fft.irfft(Y, y.size)
+
+
+#: a line read as a band (:func:`line_band`): the band's half-width, relative to the line's frequency (a
+#: shaker's or a motor's frequency wanders by a few per cent under load; the band holds +-4 %), and the
+#: noise beside it read over two bands as wide, one either side beyond a gap as wide
+LINE_BAND = 0.04
+
+
+def line_band(sig, dt, f: float, width: float = LINE_BAND):
+    """A line at ``f`` read as the band f (1 +- width) of ``sig``, at least
+    3 frequency bins either way: (the band's series, zero phase; the noise
+    beside it, the mean of the squares of the bands f (1 - 4 width .. 1 - 2
+    width) and f (1 + 2 width .. 1 + 4 width), each as wide as the band,
+    sample by sample (zeros when the lower one reaches 0 Hz)).  A line whose
+    frequency wanders (a shaker's, an unbalanced motor's under load)
+    spreads its power over several bins, which one sinusoid fitted at f
+    reads only in part."""
+    n = sig.size
+    w = max(width * f, 3.0 / (n * dt))
+    band = bandpass(sig, dt, f - w, f + w)
+    side = (bandpass(sig, dt, f - 4 * w, f - 2 * w) ** 2 + bandpass(sig, dt, f + 2 * w, f + 4 * w) ** 2) / 2 \
+        if f - 4 * w > 0 else np.zeros(n)
+    return band, side
+
+
 def resonance(x, dt: float, f: float, zeta: float):
     """``x`` recorded through a second-order resonance at ``f`` Hz of damping
     ratio ``zeta`` (unit gain at 0 Hz: wn**2 / (s**2 + 2 zeta wn s + wn**2)),
