@@ -57,8 +57,8 @@ MIN_SAMPLES = 50
 
 _NAMES = {
     "t": ("t", "time", "timestamp", "datetime", "date_time", "date", "zeit", "temps", "x_value"),
-    "x": ("x", "disp", "displacement", "extension", "spring", "deflection", "defl"),
-    "y": ("y", "xn", "normal_disp", "normal_displacement"),
+    "x": ("x", "disp", "displacement", "extension", "spring", "deflection", "defl", "dx", "d_x", "lateral_deflection"),
+    "y": ("y", "xn", "normal_disp", "normal_displacement", "dz", "d_z", "normal_deflection"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity", "geschwindigkeit"),
     "F": ("f", "friction", "force", "friction_force", "ft", "ff", "f_f", "fr", "fx", "tangential", "tangential_force",
           "ffric", "f_fric", "fric", "ffriction", "f_friction", "ftan", "f_tan", "ftang", "f_tang", "f_t", "fric_force",
