@@ -911,3 +911,24 @@ def test_a_drill_string_rigs_columns_are_read_for_their_roles(tmp_path):
     assert r.y is not None and r.y_is_force and r.vd is not None
     np.testing.assert_allclose(np.median(r.vd), rec.v0, rtol=0.02)
     assert any("Bit speed not read" in n for n in r.notes), r.notes
+
+
+def test_a_trackers_one_track_without_a_unit_is_read_in_the_unit_its_travel_says(tmp_path):
+    """Tracker's one-track table ("mass A" over "t  x  y", calibrated in m,
+    no unit written) beside --v0 in mm/s: the track keeps up with the drive
+    on average, so its travel says m, and it is the slider's position (its
+    axis turned where it counts against the drive), each said; a plain
+    extension without a unit (mm), which travels nowhere, keeps mm."""
+    rec, drive, slider = _positions()
+    for sign in (1.0, -1.0):
+        p = tmp_path / "track.txt"
+        p.write_text("mass A\nt\tx\ty\n" + "".join(f"{a:.9g}\t{sign * b / 1000:.12g}\t0.0312\n"
+                                                  for a, b in zip(rec.t, slider)))
+        r = read_record(p, v0=rec.v0)
+        np.testing.assert_allclose(r.x - r.x[0], rec.x - rec.x[0], atol=1e-6)
+        assert any("has no unit: its travel over the record" in n and "says m:" in n for n in r.notes), r.notes
+    p = tmp_path / "plain.csv"
+    p.write_text("t,x\n" + "".join(f"{a:.9g},{b:.9g}\n" for a, b in zip(rec.t, rec.x)))
+    r = read_record(p, v0=rec.v0)
+    np.testing.assert_allclose(r.x, rec.x, atol=1e-6)
+    assert not any("has no unit" in n for n in r.notes)

@@ -303,6 +303,48 @@ def _is_slider(name: str) -> bool:
 _PIXEL = ("px", "pix", "pixel", "pixels")
 
 
+#: a lone position written without its unit (a video tracker's, calibrated in m or cm): the unit its travel
+#: over the record says against --v0 (the slider keeps up with the drive on average), when within this factor
+UNIT_FROM_TRAVEL = 1.3
+_TRAVEL_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1e3, "in": 25.4, "um": 1e-3}
+
+
+def _unit_from_travel(path, name: str, x, cols, units, v0: float, notes: list) -> float:
+    """A lone position column without a unit beside --v0: the factor to mm of the length unit (mm, cm, m,
+    in, um) whose travel over the record matches the drive's at --v0 within UNIT_FROM_TRAVEL (a slider
+    keeps up with its drive on average), said in ``notes``; None when none does (an extension, which rises
+    and falls about a level, travels nowhere) or the time is unknown."""
+    if "t" not in cols:
+        return None
+    try:
+        tv = cols["t"][1] * _scale(path, cols["t"][0], units["t"], _TIME, "time")
+    except LiengInputError:
+        return None
+    travel = abs(float(x[-1] - x[0]))
+    want = abs(v0) * float(tv[-1] - tv[0])
+    if not (travel > 0 and want > 0):
+        return None
+    # a position follows the drive all along (its slope on the drive's travel near 1 in size, little about
+    # the line): an extension that merely ends higher than it starts does not
+    drive = abs(v0) * (tv - tv[0])
+    if not (np.all(np.isfinite(drive)) and np.all(np.isfinite(x)) and float(np.ptp(drive)) > 0):
+        return None
+    try:
+        slope, icpt = np.polyfit(drive, x, 1)
+    except (np.linalg.LinAlgError, ValueError):
+        return None
+    if not float(np.std(x - (icpt + slope * drive))) <= 0.5 * abs(slope) * float(np.std(drive)):
+        return None
+    for unit, k in _TRAVEL_UNITS.items():
+        if 1.0 / UNIT_FROM_TRAVEL <= k * travel / want <= UNIT_FROM_TRAVEL and \
+                1.0 / UNIT_FROM_TRAVEL <= k * abs(float(slope)) <= UNIT_FROM_TRAVEL:
+            if k != 1.0:
+                notes.append(f"column {name} has no unit: its travel over the record, against --v0 "
+                             f"{v0:g} mm/s, says {unit}: read in {unit}")
+            return k
+    return None
+
+
 def _position_scale(path, name: str, unit: str, tab) -> float:
     """A position column's factor to mm: its length unit's, or a pixel's at the scale the metadata states
     (refused, naming the column, without one)."""
@@ -842,6 +884,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             n, u = cand[0]
             cols.pop("position", None), units.pop("position", None)
             xs = tab.columns[n] * _position_scale(path, n, u, tab)
+            if not u and "t" not in tab.dates.keys() & {cols.get("t", ("",))[0]}:
+                xs = xs * (_unit_from_travel(path, n, xs, cols, units, float(v0), given) or 1.0)
             if float(xs[-1] - xs[0]) * float(v0) < 0:
                 # (its axis counts the other way: a camera's image coordinates, a laser facing the slider)
                 xs = -xs
@@ -942,6 +986,15 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     notes.extend(tab.notes())
     if "x" in cols:
         x = cols["x"][1] * _scale(path, cols["x"][0], units["x"], _LENGTH, "displacement")
+        if not units["x"] and pair is None and v0 is not None and not {"position", "v0"} & cols.keys() \
+                and not dated:
+            # a displacement without its unit beside --v0 that travels with the drive (a video tracker's one
+            # track, in m or cm): the slider's position, in the unit its travel says (:func:`_extension_of_slider`)
+            k = _unit_from_travel(path, cols["x"][0], x, cols, units, float(v0), notes)
+            x = x * (k or 1.0)
+            if k and float(x[-1] - x[0]) * float(v0) < 0:
+                x = -x                    # (its axis counts the other way: a camera's image coordinates)
+                notes.append(f"column {cols['x'][0]} runs against --v0's direction: its sign is turned")
         if stiffness is not None:
             notes.append("--stiffness ignored: the record gives the displacement x itself")
         y, y_force = None, False
