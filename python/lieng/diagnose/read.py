@@ -309,7 +309,7 @@ UNIT_FROM_TRAVEL = 1.3
 _TRAVEL_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1e3, "in": 25.4, "um": 1e-3}
 
 
-def _unit_from_travel(path, name: str, x, cols, units, v0: float, notes: list) -> float:
+def _unit_from_travel(path, name: str, x, cols, units, v0: float, notes: list) -> float | None:
     """A lone position column without a unit beside --v0: the factor to mm of the length unit (mm, cm, m,
     in, um) whose travel over the record matches the drive's at --v0 within UNIT_FROM_TRAVEL (a slider
     keeps up with its drive on average), said in ``notes``; None when none does (an extension, which rises
@@ -445,7 +445,9 @@ _TWIST_WORDS = {"deflection", "twist", "extension", "spring", "torsion", "displa
 _ROTOR_WORDS = _STAGE_WORDS | {"input", "rotor", "spindle", "shaft", "angle", "position", "rotation", "speed",
                                "velocity", "omega", "td", "topdrive"}
 #: an angular speed named for what the spring turns (a drill string's bit, a lower disc), not for the drive
+#: (unless named for the drive too: _DRIVING_WORDS)
 _TURNED_WORDS = {"bit", "lower", "slider", "output", "follower"}
+_DRIVING_WORDS = _STAGE_WORDS | {"top", "td", "topdrive", "input", "upper"}
 
 
 #: stiffnesses (N/m)
@@ -536,12 +538,12 @@ def _rotary(path, roles, tab, cols, units):
         cols["x"], units["x"] = (name, tab.columns[name] * _ANGLE[_unit_key(u)]), "mm"
         used.append(f"{name} ({u}) as the torsion spring's twist")
     drive = [(n, u) for n, u in angles if (n, u) not in twist[:1] and _words(n) & _ROTOR_WORDS]
-    turned = [(n, u) for n, u in speeds if _words(n) & _TURNED_WORDS and not _words(n) & (_STAGE_WORDS | {"top",
-                                                                                                       "td", "topdrive", "input", "upper"})]
+    turned = [(n, u) for n, u in speeds if _words(n) & _TURNED_WORDS and not _words(n) & _DRIVING_WORDS]
     if turned:
         # the speed of what the spring turns (a bit's, a lower disc's): the slider's, not the drive's
         speeds = [q for q in speeds if q not in turned]
-        cols.pop("v0", None) if cols.get("v0", ("",))[0] in [n for n, _ in turned] else None
+        if "v0" in cols and cols["v0"][0] in [n for n, _ in turned]:
+            cols.pop("v0"), units.pop("v0", None)
         used.append(f"{', '.join(n for n, _ in turned)} not read (the speed of what the spring turns, not the "
                     f"drive's)")
     if speeds:
@@ -813,7 +815,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     notes_pair = None
     if pair is not None:
         (sn, su), (dn, du) = pair
-        (ks, kd), scale_note = (_position_scale(path, n, u, tab) for n, u in (pair[0], pair[1])), ""
+        ks, kd = _position_scale(path, sn, su, tab), _position_scale(path, dn, du, tab)
+        scale_note = ""
         if su in _PIXEL or du in _PIXEL:
             scale_note = (f" (in pixels, at the {tab.stated_scale[0]:.4g} mm per pixel that line {tab.stated_scale[1]} "
                           f"states)")
@@ -884,7 +887,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             n, u = cand[0]
             cols.pop("position", None), units.pop("position", None)
             xs = tab.columns[n] * _position_scale(path, n, u, tab)
-            if not u and "t" not in tab.dates.keys() & {cols.get("t", ("",))[0]}:
+            if not u:
                 xs = xs * (_unit_from_travel(path, n, xs, cols, units, float(v0), given) or 1.0)
             if float(xs[-1] - xs[0]) * float(v0) < 0:
                 # (its axis counts the other way: a camera's image coordinates, a laser facing the slider)
