@@ -372,7 +372,7 @@ def _maybe_position(name: str, unit: str) -> bool:
     video tracker's "mass A x"), not a vertical one ("mass A y")."""
     if _position_unit(name, unit) is None:
         return False
-    words = set(re.split(r"[^a-z0-9]+", name.strip().lower()))
+    words = _words(name)
     return bool(words & (_SLIDER_WORDS | _STAGE_WORDS | {"x", "pos", "position"})) and "y" not in words
 
 
@@ -825,8 +825,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         ext = tab.columns[dn] * kd - tab.columns[sn] * ks
         cols["x"], units["x"] = (f"{dn} - {sn}", ext), "mm"
         cols["position"], units["position"] = (dn, tab.columns[dn] * kd), "mm"
-        words = set(re.split(r"[^a-z0-9]+", f"{sn} {dn}".lower()))
-        how = "" if (_is_slider(sn) and words & _STAGE_WORDS) else " (told apart by their motion: the slider's " \
+        how = "" if (_is_slider(sn) and _words(dn) & _STAGE_WORDS) else " (told apart by their motion: the slider's " \
             "stands still through its sticks, the stage's runs on)"
         notes_pair = (f"columns {sn} and {dn}: the slider's and the stage's positions{how}; the spring's extension "
                       f"x is the stage's less the slider's{scale_note}")
@@ -886,14 +885,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         if len(cand) == 1 and cand[0][1] is not None:
             n, u = cand[0]
             cols.pop("position", None), units.pop("position", None)
-            xs = tab.columns[n] * _position_scale(path, n, u, tab)
-            if not u:
-                xs = xs * (_unit_from_travel(path, n, xs, cols, units, float(v0), given) or 1.0)
-            if float(xs[-1] - xs[0]) * float(v0) < 0:
-                # (its axis counts the other way: a camera's image coordinates, a laser facing the slider)
-                xs = -xs
-                given.append(f"column {n} runs against --v0's direction: its sign is turned")
-            cols["x"], units["x"] = (n, xs), "mm"
+            # (pixels at the stated scale; a unit that is not written is read from the travel below)
+            cols["x"], units["x"] = (n, tab.columns[n] * _position_scale(path, n, u, tab)), "mm" if u else ""
             lone = n
     if "x" not in cols and "F" not in cols:
         _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column {where}{over}"
@@ -989,14 +982,14 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     notes.extend(tab.notes())
     if "x" in cols:
         x = cols["x"][1] * _scale(path, cols["x"][0], units["x"], _LENGTH, "displacement")
-        if not units["x"] and pair is None and v0 is not None and not {"position", "v0"} & cols.keys() \
-                and not dated:
+        if pair is None and v0 is not None and not {"position", "v0"} & cols.keys():
             # a displacement without its unit beside --v0 that travels with the drive (a video tracker's one
             # track, in m or cm): the slider's position, in the unit its travel says (:func:`_extension_of_slider`)
-            k = _unit_from_travel(path, cols["x"][0], x, cols, units, float(v0), notes)
+            k = _unit_from_travel(path, cols["x"][0], x, cols, units, float(v0), notes) if not units["x"] else None
             x = x * (k or 1.0)
-            if k and float(x[-1] - x[0]) * float(v0) < 0:
-                x = -x                    # (its axis counts the other way: a camera's image coordinates)
+            if (k or lone is not None) and float(x[-1] - x[0]) * float(v0) < 0:
+                # (its axis counts the other way: a camera's image coordinates, a laser facing the slider)
+                x = -x
                 notes.append(f"column {cols['x'][0]} runs against --v0's direction: its sign is turned")
         if stiffness is not None:
             notes.append("--stiffness ignored: the record gives the displacement x itself")

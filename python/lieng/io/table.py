@@ -559,11 +559,9 @@ def _track_names(rows, k0: int, names: list, sep) -> list | None:
     stands over its column and those after it up to the next; None when the
     row above names no track over a repeated name."""
     ka = next((k for k in range(k0 - 1, -1, -1) if rows[k].strip() and not _is_comment(rows[k])), None)
-    if ka is None or _numeric_cells(rows[ka]):
-        return None
-    cells = [_unquote(c).strip() for c in (rows[ka].split(sep) if sep else rows[ka].split())]
-    if not sep:
+    if not sep or ka is None or _numeric_cells(rows[ka]):
         return None                       # (a whitespace row keeps no place for an empty cell)
+    cells = [_unquote(c).strip() for c in rows[ka].split(sep)]
     over, cur = [], ""
     for j in range(len(names)):
         cur = cells[j] if j < len(cells) and cells[j] else cur
