@@ -932,3 +932,26 @@ def test_a_trackers_one_track_without_a_unit_is_read_in_the_unit_its_travel_says
     r = read_record(p, v0=rec.v0)
     np.testing.assert_allclose(r.x, rec.x, atol=1e-6)
     assert not any("has no unit" in n for n in r.notes)
+
+
+def test_a_german_test_machines_compound_names_are_read_for_their_roles(tmp_path):
+    """A strip-drawing tester's export from a German test machine
+    (semicolons, decimal commas, ``Key;Value`` lines above the header):
+    ``Standardkraft`` (the load cell's force, the pull) is the friction
+    force, ``Klemmkraft`` the normal one, ``Traversenweg`` the crosshead's
+    travel (the drive's position) and ``Traversengeschwindigkeit`` its
+    speed, by the last part of each compound (found by the strip_draw
+    generator, whose first contact refused 16 of 48 records)."""
+    rec, drive, _ = _positions()
+    k = 2000.0                                  # N/m: x (mm) = F / k * 1000
+    dec = lambda v, f: format(v, f).replace(".", ",")
+    for third, col in (("Traversenweg", drive), ("Traversengeschwindigkeit", np.full(rec.t.size, rec.v0))):
+        p = tmp_path / "zug.csv"
+        p.write_text("Prüfer;M. Muster\nProbe;DC04 0,8 mm\n"
+                     f"Zeit;Standardkraft;Klemmkraft;{third}\ns;N;kN;{'mm' if third.endswith('weg') else 'mm/s'}\n"
+                     + "".join(f"{dec(a, '.6f')};{dec(k * x / 1000, '.9g')};{dec(12.5, '.3f')};{dec(d, '.9g')}\n"
+                               for a, x, d in zip(rec.t, rec.x, col)), encoding="cp1252")
+        r = read_record(p, stiffness=k)
+        np.testing.assert_allclose(r.x, rec.x, atol=1e-5)
+        assert r.y is not None and r.y_is_force and r.drive_recorded
+        np.testing.assert_allclose(np.median(r.vd), rec.v0, rtol=0.02)

@@ -206,6 +206,29 @@ def _words(name: str) -> set:
                         .encode("ascii", "ignore").decode()))
 
 
+#: German compounds' first parts that make a force (-kraft) the normal one: a clamp's, a blank holder's, a
+#: contact's, a support's
+_GERMAN_NORMAL = ("normal", "klemm", "niederhalter", "anpress", "andruck", "auflage", "spann", "halte")
+
+
+def _german_compounds(words: set) -> set:
+    """A column name's words with the last part of a German compound added
+    as a word of its own: a force (``Standardkraft``, ``Zugkraft``: the
+    test machine's load cell, the pull) or a normal one (``Klemmkraft``,
+    ``Niederhalterkraft``), a travel (``Traversenweg``: the crosshead's,
+    the drive's position; ``Federweg``, the spring's, is its extension),
+    a speed (``Traversengeschwindigkeit``)."""
+    out = set(words)
+    for w in words:
+        if w.endswith("kraft") and len(w) > 5:
+            out.add("normal" if w.startswith(_GERMAN_NORMAL) else "kraft")
+        elif w.endswith("weg") and len(w) > 3:
+            out.add("displacement" if w.startswith("feder") else "weg")
+        elif w.endswith("geschwindigkeit") and len(w) > 15:
+            out.add("geschwindigkeit")
+    return out
+
+
 def _role(name: str, unit: str = ""):
     """The column's role from its name; a unit that is a length, velocity,
     time or force rules out the roles of another dimension ("Load point
@@ -219,7 +242,7 @@ def _role(name: str, unit: str = ""):
         fits = {"F"}                     # a torque ("Nm" is not a nanometre): the friction of a rotary rig
     if fits is not None and not fits:
         fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
-    words = _words(key)
+    words = _german_compounds(_words(key))
     if "load" in words and words & {"friction", "tangential", "lateral", "shear", "traction"}:
         words = words - {"load"}             # "Tangential load", "Friction load": the friction force
     if {"load", "cell"} <= words:
