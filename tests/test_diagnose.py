@@ -184,6 +184,41 @@ def test_records_without_stick_slip_are_reported_not_refused(tmp_path):
     assert json.loads((out / "diagnosis.json").read_text())["natural_frequency_hz"]["used"] is None
 
 
+def test_slips_are_found_where_the_level_wanders_by_more_than_they_drop():
+    """A sawtooth (sticks rising at the drive, slips falling in half a
+    natural period) whose level climbs by six drops and falls once by eight
+    (a load along the track, one large slip among small ones: the level's
+    span is many times a slip's drop): every slip is found, the large one
+    among them, and no other (geometry, not a model)."""
+    from lieng.diagnose.segment import find_cycles, prepare
+
+    fn, v0, drop, dt = 50.0, 1.0, 0.02, 1e-4
+    stick, slip = drop / v0, 0.5 / fn
+    t, x, level, n = [], [], 0.0, 0
+    t0 = 0.0
+    drops = [drop] * 24
+    drops[8] = 8 * drop                    # one large slip
+    for k, d in enumerate(drops):
+        climb = 6 * drop / len(drops) if k != 8 else 0.0      # the level climbs between slips
+        ts = np.arange(0.0, stick + climb / v0, dt)
+        t.append(t0 + ts)
+        x.append(level + v0 * ts)
+        top = level + v0 * ts[-1]
+        tf = np.arange(dt, slip, dt)
+        t.append(t0 + ts[-1] + tf)
+        x.append(top - d * 0.5 * (1 - np.cos(np.pi * tf / slip)))
+        t0 = t[-1][-1] + dt
+        level = top - d
+        n += 1
+    ts = np.arange(0.0, 0.5 * stick, dt)       # and a last stick after the last slip
+    t, x = np.concatenate(t + [t0 + ts]), np.concatenate(x + [level + v0 * ts])
+    rec = record_from_arrays(t, x, v0)
+    c = find_cycles(prepare(rec), fn, retry=True)
+    assert c.n == n
+    # at the first threshold alone (a simulated trace's reading) the level's span hides the small slips
+    assert find_cycles(prepare(rec), fn).n < 4
+
+
 def test_a_thesis_style_trc_deck_is_accepted(tmp_path, capsys):
     """A TRC readings deck (App. 7) of an effect-free record: diagnose reads
     it (OMNH gives fn, XN becomes y), resamples the readings and finds no

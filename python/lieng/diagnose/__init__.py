@@ -152,7 +152,7 @@ def _stiffness_from_sticks(pr):
     sliding the presliding ramp after each reversal (its rise to 90 % of the
     sliding level over the travel meanwhile, the median over two strokes or
     more that resolve it); None when neither can be read."""
-    c = find_cycles(pr, None)
+    c = find_cycles(pr, None, retry=True)
     if c.n >= 4:
         r = stick_ratios(pr, c)[1]
         if r.size >= 3 and np.median(r) > 0:
@@ -405,17 +405,17 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     if fn is not None:
         check_fn(rec, fn, f"--fn {fn:g} Hz", "--fn (Hz)")
         ph = head(pr, CALIBRATION_SAMPLES)     # (a fixed cost on a long record)
-        dur = slip_seconds(ph, find_cycles(ph, None))
+        dur = slip_seconds(ph, find_cycles(ph, None, retry=True))
         if dur is not None and dur * fn < SLIP_SHORTEST:
             warnings.append(f"the slips last {dur:.3g} s, {dur * fn:.2g} of a natural period at --fn {fn:g} Hz: a "
                             f"slip lasts about half a period (fn about {0.5 / dur:.3g} Hz): check --fn (Hz)")
-    c0 = find_cycles(pr, fn)
+    c0 = find_cycles(pr, fn, retry=True)
     span = stick_slip_span(pr, c0)
     if span is not None:
         # the baseline is fitted where the record stick-slips: a steady stretch before or after it (the drive
         # changed, a lubricant came in) has no cycle to predict, and its replicates would stick-slip there
         pr = crop(pr, span[0], span[1])
-        c0 = find_cycles(pr, fn)
+        c0 = find_cycles(pr, fn, retry=True)
         notes.append(f"no stick-slip in {span[2]}: the record is analysed from {pr.t[0]:.4g} to {pr.t[-1]:.4g} s, "
                      f"where it stick-slips")
     fd, fse, nsl = estimate_fn(pr, c0, fn) if c0.n >= 3 else (None, None, 0)
@@ -426,7 +426,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         if c0.n < 4 and fd is None:
             return _in_units(_no_stick_slip(pr, c0.n, notes, warnings), rec)
         if fd is not None:
-            c1 = find_cycles(pr, fd)
+            c1 = find_cycles(pr, fd, retry=True)
             fd2, fse2, _ = estimate_fn(pr, c1, fd) if c1.n >= 3 else (None, None, 0)
             if fd2 is not None:
                 fd, fse = fd2, fse2
@@ -523,7 +523,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     if 1.0 / (fn_used * pr.dt) < 15:
         warnings.append(f"{1.0 / (fn_used * pr.dt):.1f} samples per natural period: the slip-shape evidence is "
                         f"weak below about 20")
-    c = find_cycles(pr, fn_used)
+    c = find_cycles(pr, fn_used, retry=True)
     if c.n < 4:
         return _in_units(_no_stick_slip(pr, c.n, notes, warnings, fn_used, src, fd, fse), rec)
     ratio = max((stick_ratios(pr, cc)[1] for cc in (c0, c)), key=np.size)

@@ -618,13 +618,13 @@ def calibrate_fn(pr: Prepared, f0: float, iters: int = 6, bound: float = 0.9, yl
     pr = head(pr, CALIBRATION_SAMPLES)
     if ylow is not None:
         ylow = ylow[:pr.t.size]
-    dur = slip_seconds(pr, find_cycles(pr, f0))
+    dur = slip_seconds(pr, find_cycles(pr, f0, retry=True))
     if dur is None:
         return None
     f, moved = f0, False
     seen = []                       # (ln f, ln of the simulated over the record's duration)
     for _ in range(iters):
-        c = find_cycles(pr, f)
+        c = find_cycles(pr, f, retry=True)
         if c.n < 3:
             break
         try:

@@ -15,7 +15,10 @@ frequency.
   hysteresis of a quarter of the typical swing (no natural frequency
   needed): a drop is a slip when it is faster than the rise before it.  A
   slip ends at its arrest (:func:`arrest`: the first local minimum most of
-  the way down), not at the lowest wiggle of a hold that follows it.
+  the way down), not at the lowest wiggle of a hold that follows it.  A
+  record whose level wanders by more than its slips drop (a load along the
+  track, one large slip among many small ones) shows fewer than four slips
+  at that hysteresis; its own reading halves it until it shows them.
 * **Natural frequency.**  From x inside the slips: between the peak and
   the trough the slider swings a half natural period about the friction
   level (exactly, for any level, also one that steps where the sliding
@@ -747,10 +750,70 @@ def _light(x, dt, fn, win: int, noise: float):
 _RAMP = True
 
 
-def find_cycles(p: Prepared, fn: float | None, speeds: bool = True) -> Cycles:
+#: a record with fewer slips than this at the first swing threshold (a quarter of each stroke's span) is
+#: read again at half the threshold, and so on (:func:`find_cycles` with ``retry``): too few to read as
+#: stick-slip anyway (:func:`lieng.diagnose.diagnose` reads four at least)
+RETRY_SLIPS = 4
+#: the smallest share of a stroke's span the swing threshold is lowered to (its other floors, 8 times the
+#: noise and a twentieth of the stroke's whole span, hold throughout)
+SHARE_FLOOR = 0.25 / 16
+
+
+def _stroke_slips(xl, noise: float, share: float) -> list:
+    """The slips of one stroke's lightly smoothed trace ``xl``: (peak,
+    trough, whether the slip before it is in the same run of cycles), the
+    indices within the stroke; found as the alternating extrema with a
+    hysteresis of ``share`` of the stroke's span (at least 8 times the
+    noise), then again at 0.3 of their median swing, each fall that is
+    faster than the rise before it."""
+    out = []
+    # the swing's scale, less a reversal's reload at the stroke's start (x climbing from the other side to
+    # its level: a ramp as tall as two static limits, which no slip is)
+    head_end = int(np.argmax(xl >= np.median(xl))) if _RAMP else 0
+    body = xl[head_end:] if 2 * (xl.size - head_end) >= xl.size else xl
+    span = float(np.subtract(*np.percentile(body, [98, 2])))
+    if not span > 1e-9 * float(np.max(np.abs(xl))):
+        return out                      # a flat stroke (within rounding): no cycle in it
+    # (and at least a twentieth of the whole stroke's, reload included: a steady stroke's wiggles are no
+    # stick-slip)
+    h0 = max(share * span, 8 * noise, 0.05 * float(np.subtract(*np.percentile(xl, [98, 2]))))
+    ix, kd = _zigzag_fast(xl, h0)
+    if ix.size >= 4:
+        sw = np.abs(np.diff(xl[ix]))
+        h = max(0.3 * float(np.median(sw)), 8 * noise)
+        ix, kd = _zigzag_fast(xl, h)
+    follows = False
+    # (the local minima before each sample, counted once: a slip with none before its lowest point ends
+    # there, which :func:`arrest` would find at a cost per slip)
+    nmin = np.r_[0, np.cumsum(xl[1:] >= xl[:-1])]
+    ixl, kdl = ix.tolist(), kd.tolist()
+    for m in range(ix.size - 1):
+        if kdl[m] != 1 or kdl[m + 1] != -1:
+            continue
+        pi_, ti_ = ixl[m], ixl[m + 1]
+        if nmin[ti_] > nmin[pi_]:
+            ti_ = arrest(xl, pi_, ti_, 3 * noise)
+        fall = ti_ - pi_
+        rise = pi_ - ixl[m - 1] if m >= 1 else None
+        if rise is not None and not fall < rise:
+            follows = False
+            continue            # not a slip: as slow as the rise before it
+        if fall < 1:
+            continue
+        out.append((pi_, ti_, follows))
+        follows = True
+    return out
+
+
+def find_cycles(p: Prepared, fn: float | None, speeds: bool = True, retry: bool = False) -> Cycles:
     """The stick-slip cycles of every stroke (see the module docstring);
     with ``speeds=False`` the peaks and troughs alone (``v`` and ``a`` are
-    left empty: a simulated trace's troughs, read many times over)."""
+    left empty: a simulated trace's troughs, read many times over);
+    ``retry``: a record's own reading, whose level may wander by more than
+    its slips: with fewer than :data:`RETRY_SLIPS` slips found, the swing
+    threshold is halved until it shows them (a simulated trace is read at
+    the first threshold alone: a baseline that settles into steady sliding
+    rings down, and its ringing is no slip)."""
     dt = p.dt
     noise = noise_level(p.x)
     base_win = 5 if fn is None or 0.25 / fn / dt < 9 else max(5, int(0.08 / fn / dt) | 1)
@@ -759,7 +822,6 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True) -> Cycles:
         xl, nl = _light(p.x[sl], dt, fn, base_win, noise)
         light.append(xl)
         noises.append(nl)
-    allx = np.concatenate(light)
     peaks, troughs, strk, nxt = [], [], [], []
     vs, acc = [], []
     win = None
@@ -774,47 +836,26 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True) -> Cycles:
         elif speeds:
             vs.append(smooth(xr, dt, 1.0, 1, win=7))
             acc.append(smooth(xr, dt, 1.0, 2, win=7))
-        # the swing's scale, less a reversal's reload at the stroke's start (x climbing from the other side to
-        # its level: a ramp as tall as two static limits, which no slip is)
-        head_end = int(np.argmax(xl >= np.median(xl))) if _RAMP else 0
-        body = xl[head_end:] if 2 * (xl.size - head_end) >= xl.size else xl
-        span = float(np.subtract(*np.percentile(body, [98, 2])))
-        if not span > 1e-9 * float(np.max(np.abs(xl))):
-            continue                      # a flat stroke (within rounding): no cycle in it
-        # (and at least a twentieth of the whole stroke's, reload included: a steady stroke's wiggles are no
-        # stick-slip)
-        h0 = max(0.25 * span, 8 * noise, 0.05 * float(np.subtract(*np.percentile(xl, [98, 2]))))
-        ix, kd = _zigzag_fast(xl, h0)
-        if ix.size >= 4:
-            sw = np.abs(np.diff(xl[ix]))
-            h = max(0.3 * float(np.median(sw)), 8 * noise)
-            ix, kd = _zigzag_fast(xl, h)
-        last_peak = None
-        # (the local minima before each sample, counted once: a slip with none before its lowest point ends
-        # there, which :func:`arrest` would find at a cost per slip)
-        nmin = np.r_[0, np.cumsum(xl[1:] >= xl[:-1])]
-        ixl, kdl = ix.tolist(), kd.tolist()
-        for m in range(ix.size - 1):
-            if kdl[m] != 1 or kdl[m + 1] != -1:
-                continue
-            pi_, ti_ = ixl[m], ixl[m + 1]
-            if nmin[ti_] > nmin[pi_]:
-                ti_ = arrest(xl, pi_, ti_, 3 * noise)
-            fall = ti_ - pi_
-            rise = pi_ - ixl[m - 1] if m >= 1 else None
-            if rise is not None and not fall < rise:
-                last_peak = None
-                continue            # not a slip: as slow as the rise before it
-            if fall < 1:
-                continue
+    # the first swing threshold is a quarter of each stroke's span; a record whose level wanders by more than
+    # its slips (a load along the track, one large slip among many small ones) swings fewer times at it than it
+    # slips, and the threshold is halved until the record shows enough slips to be read (at most to the floor
+    # that the noise and a twentieth of the stroke's span set, as before)
+    share = 0.25
+    while True:
+        found = [_stroke_slips(xl, noise, share) for xl, noise in zip(light, noises)]
+        if not retry or sum(len(f) for f in found) >= RETRY_SLIPS or share <= SHARE_FLOOR:
+            break
+        share *= 0.5
+    for k, (s, f) in enumerate(zip(p.strokes, found)):
+        last = None
+        for pi_, ti_, follows in f:
             peaks.append(s.j0 + pi_)
             troughs.append(s.j0 + ti_)
             strk.append(k)
             nxt.append(False)
-            if last_peak is not None:
+            if follows and last is not None:
                 nxt[-2] = True
-            last_peak = len(peaks) - 1
-    del allx
+            last = len(peaks) - 1
     c = Cycles(peak_i=np.asarray(peaks, int), trough_i=np.asarray(troughs, int), stroke=np.asarray(strk, int),
                next_ok=np.asarray(nxt, bool), v=np.concatenate(vs) if speeds else np.empty(0),
                a=np.concatenate(acc) if speeds else np.empty(0),
