@@ -18,8 +18,12 @@ def run(rec):
 
 
 #: named with gain >= 0.3 in at least this many of six records (measured
-#: rates: tests/benchmarks/bench_diagnose.py)
-EFFECTS = {"twin_branch": 5, "triggering": 5, "drive_modulation": 5, "static_ageing": 3, "load_variation": 2}
+#: rates: tests/benchmarks/bench_diagnose.py).  Triggering: 2 of these six
+#: since stop 67, when the held-out metric stopped comparing the normal
+#: channel, whose line is the effect's own statistic (5-6 of 6 before, the
+#: gain earned mostly by reproducing that line; the load modulation moves
+#: the sticks and peaks of these records by little more than their noise)
+EFFECTS = {"twin_branch": 5, "triggering": 2, "drive_modulation": 5, "static_ageing": 3, "load_variation": 2}
 
 
 @pytest.mark.slow

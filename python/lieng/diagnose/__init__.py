@@ -185,13 +185,11 @@ def _extend(k, base, train, pr, c, fn, st, aux, win, trough):
     e_train0 = train.error(base)
     ext, e_tr = base, e_train0
     if cands:
-        errs = [train.error(p, bool(p.trig_ay)) for p in cands]
+        errs = [train.error(p) for p in cands]
         if np.isfinite(min(errs)):
             ext = cands[int(np.argmin(errs))]
             mask = window(pr.t, win)
             ext, e_tr = refine(k, ext, base, train, pr, fn, mask, trough, ylow=aux.get("ylow"))
-            if ext.trig_ay:           # the same metric for both: with the normal channel's unlocked part
-                e_train0 = train.error(base, True)
             if not e_tr < e_train0:   # nested: the extension's own term at zero is the baseline itself
                 ext, e_tr = base, e_train0
     return ext, e_tr, e_train0, cands

@@ -41,7 +41,7 @@ from lieng import status as st
 from lieng.diagnose.signals import resonance
 from lieng.diagnose.segment import Cycles, Prepared, creep_pairs, slip_seconds, stick_part, stick_ratios, travel
 
-__all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "model_y", "calibrate_fn"]
+__all__ = ["Params", "simulate", "run_slice", "fit_baseline", "identify", "slip_friction", "calibrate_fn"]
 
 #: quantile bins of the sliding velocity for the characteristic's table
 NBINS = 10
@@ -87,8 +87,6 @@ class Params:
     level_ph: float = 0.0
     trig_ax: float = 0.0           # the triggering line superposed on x: ax sin(2 pi f t + phx)
     trig_phx: float = 0.0
-    trig_ay: float = 0.0           # and on the normal channel: ay sin(2 pi f t + phy)
-    trig_phy: float = 0.0
     y_c: tuple = (0.0, 0.0, 0.0)   # y = c0 + c1 x + c2 x' (the part of y locked to the motion)
     offset: float = 0.0            # x recorded with an offset drifting in time: + sign offset (t - offset_t0)
     offset_t0: float = 0.0         # (mm/s; sign the stroke's direction, x being turned forward stroke by stroke)
@@ -221,15 +219,6 @@ def run_slice(pr: Prepared, p: Params, fn: float, sl: slice, start: float, ylow=
     if p.rig_f > 0:
         x = resonance(x, dt, p.rig_f, p.rig_zeta)
     return x, v, state
-
-
-def model_y(pr: Prepared, p: Params, x, v):
-    """The modelled normal channel: its part locked to the motion, plus the
-    triggering line."""
-    y = p.y_c[0] + p.y_c[1] * x + p.y_c[2] * v
-    if p.trig_ay:
-        y = y + p.trig_ay * _sin(pr.t, p.trig_f, p.trig_phy)
-    return y
 
 
 def slip_samples(c: Cycles, n: int):

@@ -68,7 +68,7 @@ import math
 import numpy as np
 
 from lieng.errors import LiengInputError
-from lieng.diagnose.baseline import (Params, characteristic, identify, level_to_trough, locked_load, model_y,
+from lieng.diagnose.baseline import (Params, characteristic, identify, level_to_trough, locked_load,
                                      pr_like, run_slice, simulate, slip_friction, stick_start)
 from lieng.diagnose.evidence import _stick_series, stick_loading, stick_times, trig_modulation
 from lieng.diagnose.signals import drive_scan, level_fit, line_fit, lowpass, refine_line
@@ -85,8 +85,7 @@ METRIC = ("RMS of normalised differences on the held-out cycles (the record's la
           "each trough): stick in the drive's travel to the next slip's halfway crossing (/ mean travel of a period; with a constant drive, the stick time / mean period), peak and trough (/ drop D); "
           "mean slip waveform at 9 instants over 0.6 natural periods centred on each slip's halfway crossing, those "
           "within the record's slips (from peak to arrest) (/ D); "
-          "when the extension predicts the normal channel's part not locked to the motion, its RMS difference in "
-          "time (/ spread of y); the baseline (and so its extension) read through the training part's linear trend "
+          "the baseline (and so its extension) read through the training part's linear trend "
           "in level when beyond 2 standard errors, except for friction_drift and load_variation")
 
 
@@ -313,9 +312,6 @@ class Judge:
             a, b = np.median(np.asarray(edges), axis=0)
             self.wave[(self.tau < a) | (self.tau > b)] = np.nan
         self.mask = window(pr.t, win)
-        if pr.y is not None:
-            ys = pr.y[self.mask]
-            self.ysd = float(np.std(ys)) if ys.size > 2 and np.std(ys) > 0 else 1.0
 
     def _starts(self, p: Params) -> list:
         """The within-stroke starts read on ``p``'s own drive and stick law
@@ -326,11 +322,12 @@ class Judge:
                 self.start[self._k.size:]
         return self._start_cache[key]
 
-    def vector(self, p: Params, with_y: bool = False):
-        """(per-cycle differences (n, 3), waveform differences, normal
-        channel term or None) or None; the normal channel's unlocked part is
-        compared only ``with_y`` (when the model predicts one: otherwise it
-        is the same for every model and would only dilute the comparison)."""
+    def vector(self, p: Params):
+        """(per-cycle differences (n, 3), waveform differences) or None.  The
+        normal channel is not compared: a triggering extension's line in it
+        is the effect's own statistic (a load modulation earns its gain by
+        what it does to the slider, not by reproducing the line that
+        detected it)."""
         pr = self.pr
         if self.rec.shape[0] < 2:
             return None
@@ -355,21 +352,13 @@ class Judge:
                 waves.append(w)
         dc = self.rec - pred
         dw = self.wave - (np.mean(waves, axis=0) / self.D if waves else np.full(NWAVE, np.nan))
-        ey = None
-        if pr.y is not None and with_y:
-            # the part of y not locked to the motion (locked to the clock), record against model
-            c0, c1, c2 = p.y_c
-            r_rec = pr.y - (c0 + c1 * pr.x + c2 * self.c.v)
-            r_sim = model_y(pr, p, np.zeros(t.size), np.zeros(t.size)) - c0
-            ey = float(np.sqrt(np.mean((r_rec[self.mask] - r_sim[self.mask]) ** 2))) / self.ysd
-        return dc, dw, ey
+        return dc, dw
 
     @staticmethod
-    def combine(dc, dw, ey, rows=None) -> float:
+    def combine(dc, dw, rows=None) -> float:
         """The error from the parts (``rows``: the cycles used, repeats allowed)."""
         d = dc if rows is None else dc[rows]
-        e2 = _msq(d) + _msq(dw) + (ey * ey if ey is not None else 0.0)
-        return float(math.sqrt(e2))
+        return float(math.sqrt(_msq(d) + _msq(dw)))
 
     def scatter(self) -> np.ndarray:
         """The record's own cycle-to-cycle scatter in each per-cycle quantity
@@ -387,9 +376,9 @@ class Judge:
                 out = 0.5 * np.mean(d[ok] ** 2, axis=0)
         return out
 
-    def error(self, p: Params, with_y: bool = False) -> float:
+    def error(self, p: Params) -> float:
         """The error of ``p`` (inf when it cannot be judged)."""
-        v = self.vector(p, with_y)
+        v = self.vector(p)
         if v is None:
             return math.inf
         e = self.combine(*v)
@@ -624,9 +613,6 @@ def candidates(effect: str, base: Params, pr: Prepared, c: Cycles, fn: float, st
             ph = float(math.atan2(co[5], co[4]))
             ax_, phx = line_fit(pr.x[tr_mask] - lowpass(pr.x[tr_mask], pr.dt, 2 * fn), tt, f_tr)
             kw = dict(trig_f=f_tr, trig_ax=ax_, trig_phx=phx)
-            if pr.y is not None:
-                ay, phy = line_fit(hp, tt, f_tr)
-                kw.update(trig_ay=ay, trig_phy=phy)
             for sc in (0.0, 0.5, 1.0):
                 out.append(lvl(base.copy(trig_eps=sc * eps, trig_ph=ph, **kw)))
             if not aux.get("y_is_force"):
@@ -706,9 +692,8 @@ def gain_folds(pr: Prepared, c: Cycles, fn: float, fits: list, ylow=None, nboot:
     parts = []
     for lo, hi, base, ext in fits:
         J = Judge(pr, c, fn, lo, hi, ylow)
-        with_y = bool(ext.trig_ay)
-        vb = J.vector(base, with_y)
-        ve = J.vector(ext, with_y) if ext is not base else vb
+        vb = J.vector(base)
+        ve = J.vector(ext) if ext is not base else vb
         if vb is not None and ve is not None:
             parts.append((J, vb, ve, ext is not base))
     base, ext = fits[0][2], fits[0][3]
@@ -811,8 +796,7 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
         it = max(REFINE_MIN_STEPS, min(it, int(it * REFINE_FULL / pr.x.size)))
     names = [n for n in SCALED.get(effect, ()) if getattr(best, n) is not None and np.any(getattr(best, n))]
     if not names:
-        return best, judge.error(best, bool(best.trig_ay))
-    with_y = bool(best.trig_ay)
+        return best, judge.error(best)
 
     made = {}
 
@@ -823,7 +807,7 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
         return made[f]
 
     def cost(f):
-        e = judge.error(make(f), with_y)
+        e = judge.error(make(f))
         return e if math.isfinite(e) else 1e300
 
     g = (math.sqrt(5.0) - 1.0) / 2.0
@@ -844,6 +828,6 @@ def refine(effect: str, best: Params, base: Params, judge: "Judge", pr, fn, targ
     # against the candidate as it came (levelled already): levelled again at factor 1 it may come out
     # elsewhere (the level's search ends at the best level it simulated, which need not be the one the
     # candidate came with), and the candidate itself must not be lost
-    e_best = judge.error(best, with_y)
+    e_best = judge.error(best)
     e_best = e_best if math.isfinite(e_best) else 1e300
     return (make(f), e1) if e1 < e_best else (best, e_best)
