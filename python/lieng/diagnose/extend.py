@@ -211,8 +211,8 @@ class Judge:
     trough (over D) are compared with the record's, plus
     the mean slip waveform around the halfway crossing of each predicted
     slip (over D) against the record's; e = sqrt(mean of the per-cycle
-    squares + mean of the waveform's squares [+ the normal channel's
-    unlocked part]).  A trajectory that parts from the record's (rounding,
+    squares + mean of the waveform's squares), x alone (a triggering's line
+    in the normal channel is its own statistic).  A trajectory that parts from the record's (rounding,
     chaos, a noisy rig) costs one cycle, not the rest of the record.  A
     reciprocating record whose sticks are mostly at the reversals (fewer
     slips followed by another in their stroke than strokes) is also judged on

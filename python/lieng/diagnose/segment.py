@@ -825,7 +825,7 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True, retry: bool 
     peaks, troughs, strk, nxt = [], [], [], []
     vs, acc = [], []
     win = None
-    for k, (s, xl, noise) in enumerate(zip(p.strokes, light, noises)):
+    for s in p.strokes:
         sl = slice(s.j0, s.j0 + s.n)
         xr = p.x[sl]
         if fn is not None:
