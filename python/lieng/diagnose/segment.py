@@ -847,15 +847,13 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True, retry: bool 
             break
         share *= 0.5
     for k, (s, f) in enumerate(zip(p.strokes, found)):
-        last = None
         for pi_, ti_, follows in f:
+            if follows:                # (the slip before it is in this stroke: appended just before)
+                nxt[-1] = True
             peaks.append(s.j0 + pi_)
             troughs.append(s.j0 + ti_)
             strk.append(k)
             nxt.append(False)
-            if follows and last is not None:
-                nxt[-2] = True
-            last = len(peaks) - 1
     c = Cycles(peak_i=np.asarray(peaks, int), trough_i=np.asarray(troughs, int), stroke=np.asarray(strk, int),
                next_ok=np.asarray(nxt, bool), v=np.concatenate(vs) if speeds else np.empty(0),
                a=np.concatenate(acc) if speeds else np.empty(0),
