@@ -91,6 +91,13 @@ VARIANTS = {
         + _rows(lambda a, b: f"{a},{b},20.0\n"),
     "a testing machine's 'Load' beside its 'Normal Load'": '"Time","Load","Normal Load"\n"(s)","(N)","(N)"\n'
         + _rows(lambda a, b: f'"{a}","{b}","20.0"\n'),
+    "digit grouping by thousands in quoted cells, a decimal point (an English spreadsheet's export)":
+        '"t [s]","F [uN]"\n' + _rows(lambda a, b: f'"{a}","{1e6 * b:,.1f}"\n'),
+    "digit grouping by thousands, a decimal comma (a German spreadsheet's export)":
+        "t [s];F [uN]\n" + _rows(lambda a, b: f"{a};".replace(".", ",")
+                                 + f"{1e6 * b:,.1f}".replace(",", " ").replace(".", ",").replace(" ", ".") + "\n"),
+    "a force in lb (a pound read as a pound-force on a force column)": "t [s],F [lb]\n"
+        + _rows(lambda a, b: f"{a},{float(b) / 4.4482216152605!r}\n"),
     "an LVDT on the slider beside the force (the slider's position, not the extension)":
         "Time (s)\tFt (N)\tLVDT slider (mm)\tActuator (mm)\n"
         + _rows(lambda a, b: f"{a}\t{b}\t{3 + a - b / K * 1e3:.7f}\t{a:.4f}\n"),
@@ -955,3 +962,61 @@ def test_a_german_test_machines_compound_names_are_read_for_their_roles(tmp_path
         np.testing.assert_allclose(r.x, rec.x, atol=1e-5)
         assert r.y is not None and r.y_is_force and r.drive_recorded
         np.testing.assert_allclose(np.median(r.vd), rec.v0, rtol=0.02)
+
+
+def test_names_given_by_the_user_head_a_file_without_a_header_or_replace_a_daq_programs(tmp_path):
+    """``--names`` (``read_record(names=...)``): a data-acquisition
+    program's channel names (``Dev1/ai0``: one name, not a name over a
+    unit), a table without a header (its first row is data), one column
+    with ``--rate``, a MATLAB file's one matrix; without it each is refused
+    in one line that names the columns as written and ``--names`` (found by
+    a blind test of forty lab exports)."""
+    import scipy.io
+
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    names = ["t [s]", "F [N]", "N [N]"]
+    daq = tmp_path / "daq.csv"
+    daq.write_text("Time,Dev1/ai0,Dev1/ai1\n" + _rows(lambda a, b: f"{a},{b},20.0\n"))
+    with pytest.raises(LiengInputError, match=r"not read: Dev1/ai0, Dev1/ai1.*--names"):
+        read_record(daq, v0=1.0, stiffness=K)
+    bare = tmp_path / "bare.csv"
+    bare.write_text(_rows(lambda a, b: f"{a},{b},20.0\n"))
+    with pytest.raises(LiengInputError, match=r"3 columns of numbers and no header naming them.*--names"):
+        read_record(bare, v0=1.0, stiffness=K)
+    one = tmp_path / "one.txt"
+    one.write_text(_rows(lambda a, b: f"{b}\n"))
+    mat = tmp_path / "m.mat"
+    scipy.io.savemat(mat, {"data": np.c_[T, F, np.full(T.size, 20.0)], "fs": 1000.0})
+    for p, kw in ((daq, {}), (bare, {}), (one, {"rate": 1000.0, "names": ["F [N]"]}), (mat, {})):
+        r = read_record(p, v0=1.0, stiffness=K, **{"names": names, **kw})
+        assert r.t.size == ref.t.size, p.name
+        np.testing.assert_allclose(r.t, ref.t, rtol=0, atol=1e-9)
+        np.testing.assert_allclose(r.x, ref.x, rtol=1e-9, atol=1e-12)
+    with pytest.raises(LiengInputError, match=r"--names: 2 names for the 3 columns"):
+        read_record(daq, v0=1.0, stiffness=K, names=names[:2])
+
+
+def test_a_lone_column_of_numbers_is_no_card_deck(tmp_path, capsys):
+    """A file of one bare column of numbers is refused as a table without a
+    header (exit 2, one line naming --names), not read as a TRC deck whose
+    card 4 fails; with ``--names`` and ``--rate`` it is read."""
+    from lieng.cli import main
+
+    p = tmp_path / "force.txt"
+    p.write_text(_rows(lambda a, b: f"{b}\n"))
+    assert main(["diagnose", str(p), "--v0", "1", "--stiffness", str(K), "-o", str(tmp_path / "o1")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "1 column of numbers and no header naming it" in err and "--names" in err
+    assert not (tmp_path / "o1").exists()
+
+
+def test_ext_is_the_springs_extension_beside_a_normal_load(tmp_path):
+    """``Time(s) Ext(mm) Load(N)``, fixed width: ``Ext`` is the spring's
+    extension and ``Load`` the normal load beside it (read as the pull of a
+    testing machine, with ``Ext`` unread, it had made a confident
+    ``no_stick_slip`` of a record of 21 slips)."""
+    p = tmp_path / "fw.dat"
+    p.write_text("   Time(s)     Ext(mm)     Load(N)\n" + _rows(lambda a, b: f"{a:10.4f}{1e3 * b / K:12.7f}{20.0:12.3f}\n"))
+    r = read_record(p, v0=1.0)
+    np.testing.assert_allclose(r.x, 1e3 * F / K, atol=1e-6)
+    assert r.y is not None and np.allclose(r.y, 20.0)

@@ -13,7 +13,7 @@ from lieng.cli.common import _is_table
 
 
 def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None, progress=None, rate=None,
-                     highpass=None):
+                     highpass=None, names=None):
     """Read one record (a table, or a TRC deck whose OMNH gives fn) and
     diagnose it: what ``lieng diagnose RECORD`` computes (also a task of
     ``diagnose --batch``).  Returns the :class:`lieng.diagnose.Diagnosis`."""
@@ -21,8 +21,8 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
     from lieng.diagnose.read import check_fn
     from lieng.io.table import headerless_columns
 
-    if _is_table(data):
-        rec = read_record(data, v0=v0, stiffness=stiffness, rate=rate, highpass=highpass)
+    if names is not None or _is_table(data):
+        rec = read_record(data, v0=v0, stiffness=stiffness, rate=rate, highpass=highpass, names=names)
     else:                                   # a thesis-style TRC deck: OMNH gives fn
         if highpass is not None:
             raise LiengInputError(f"--highpass: applies to a table, not to a TRC deck ({data})")
@@ -33,8 +33,9 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
             if ncol:
                 # not a deck: rows of as many numbers, without a header to say what they are
                 raise LiengInputError(
-                    f"{data}: {ncol} columns of numbers and no header naming them: add a first line such as "
-                    f"'t [s] F [N] position [mm]' (or 't [s] x [mm]'), in the columns' order") from None
+                    f"{data}: {ncol} column{'s' if ncol > 1 else ''} of numbers and no header naming "
+                    f"{'them' if ncol > 1 else 'it'}: add a first line such as 't [s] F [N] position [mm]' (or "
+                    f"'t [s] x [mm]'), in the columns' order, or give them with --names") from None
             raise
         if fn is None and fn_deck is not None:
             check_fn(rec, fn_deck, f"{data}: card OMNH ({fn_deck:g} Hz, the deck's natural frequency)",
@@ -73,7 +74,7 @@ def _diagnose(args) -> int:
             print(f"\rcalibrating against the baseline: replicate {k}/{n}", end="" if k < n else "\n",
                   file=sys.stderr, flush=True)
     d = _diagnose_record(args.data, args.fn, args.v0, args.stiffness, args.fn_uncertainty, progress, args.rate,
-                         args.highpass)
+                         args.highpass, args.names)
     names = _write_diagnosis(d, args.outdir, args.force, str(args.data), not args.no_plots)
     if args.json:
         print(dumps_json(d.to_json(), indent=2))
@@ -132,7 +133,8 @@ def _diagnose_batch(args) -> int:
     check_outdir(args.outdir, args.force)
     recs = _batch_records(args.batch)
     show = sys.stderr.isatty() and not args.quiet
-    tasks = [(str(r), args.fn, args.v0, args.stiffness, args.fn_uncertainty, None, args.rate, args.highpass)
+    tasks = [(str(r), args.fn, args.v0, args.stiffness, args.fn_uncertainty, None, args.rate, args.highpass,
+              args.names)
              for r in recs]
     rows, lines, errors = [None] * len(recs), [None] * len(recs), []
     with staged_outdir(args.outdir, args.force, keep=[r.stem for r in recs]) as tmp:

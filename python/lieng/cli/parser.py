@@ -46,6 +46,15 @@ def _quantity(text: str):
     return float(m.group(1)), m.group(2)
 
 
+def _names(text: str) -> list:
+    """``--names``: the columns' header cells, comma-separated ("t [s],F [N]"); argparse's one-line error for
+    an empty one."""
+    cells = [c.strip() for c in text.split(",")]
+    if not cells or not all(cells):
+        raise argparse.ArgumentTypeError(f"{text!r}: a name for each column, comma-separated ('t [s],F [N],N [N]')")
+    return cells
+
+
 def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
     """``--v0 -1:2:3`` as ``--v0=-1:2:3``: argparse takes a value that starts
     with a minus sign for an option unless it is a plain number."""
@@ -168,6 +177,11 @@ def build_parser() -> argparse.ArgumentParser:
                          "smaller twin branches through")
     dg.add_argument("--rate", type=float, metavar="HZ", help="sampling rate (Hz) of a record without a time "
                     "column (its rows are then evenly spaced samples)")
+    dg.add_argument("--names", type=_names, metavar="NAMES",
+                    help="the columns' names with their units, comma-separated in the file's order, e.g. "
+                         "'t [s],F [N],N [N]': they replace the file's header (a data-acquisition program's "
+                         "'Dev1/ai0', 'CH1') or head a file that has none; a .mat or .npz file's one matrix is "
+                         "read column by column under them")
     dg.add_argument("--stiffness", type=_quantity, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record (a torque record's: N·m per its angle unit, per rad when it has no angle column), or "
                     "with its unit, '2.5 N/mm', '0.05 N·m/rad'; estimated from the sticks when not given")

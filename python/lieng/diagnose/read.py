@@ -57,7 +57,8 @@ MIN_SAMPLES = 50
 
 _NAMES = {
     "t": ("t", "time", "timestamp", "datetime", "date_time", "date", "zeit", "temps", "x_value"),
-    "x": ("x", "disp", "displacement", "extension", "spring", "deflection", "defl", "dx", "d_x", "lateral_deflection"),
+    "x": ("x", "disp", "displacement", "extension", "ext", "spring", "deflection", "defl", "dx", "d_x",
+          "lateral_deflection"),
     "y": ("y", "xn", "normal_disp", "normal_displacement", "dz", "d_z", "normal_deflection"),
     "v0": ("v0", "vd", "drive", "velocity", "speed", "drive_velocity", "geschwindigkeit"),
     "F": ("f", "friction", "force", "friction_force", "ft", "ff", "f_f", "fr", "fx", "tangential", "tangential_force",
@@ -82,7 +83,7 @@ _TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "msec": 1e-3, "us": 1e-6, "Â
          "min": 60.0, "h": 3600.0, "hr": 3600.0}
 #: forces (N), also the gravitational units a balance or an old rig writes (gram-, kilogram-, pound-force)
 _FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "Âµn": 1e-6, "nn": 1e-9, "kn": 1e3, "dan": 10.0, "gf": 9.80665e-3,
-          "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605}
+          "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605, "lb": 4.4482216152605}
 #: stresses (Pa): a shear and a normal stress stand for the forces (a rock-mechanics biaxial rig)
 _STRESS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "bar": 1e5, "psi": 6894.757}
 
@@ -767,7 +768,7 @@ def _drive_from_position(pos, dt, notes):
 
 
 def read_record(path, v0: float | None = None, stiffness: float | None = None, rate: float | None = None,
-                highpass: float | None = None) -> Record:
+                highpass: float | None = None, names=None) -> Record:
     """Read a displacement or force record (see the module docstring).
 
     Parameters
@@ -790,6 +791,12 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         The time constant (s) of a first-order high-pass the friction
         channel went through (an AC-coupled sensor: a piezoelectric force
         cell's charge amplifier), undone (:func:`undo_highpass`).
+    names : sequence of str, optional
+        The columns' names with their units, in order (``["t [s]",
+        "F [N]", "N [N]"]``): they replace the file's header (a
+        data-acquisition program's ``Dev1/ai0``) or head a file that has
+        none; a ``.mat`` or ``.npz`` file's one matrix is read column by
+        column under them (:func:`lieng.io.table.read_table`).
 
     Returns
     -------
@@ -805,7 +812,8 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
                      missing="drop", unused=lambda name, unit: _kind(name, unit) is None and
                      not _maybe_position(name, unit),
-                     sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular"))
+                     sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular"),
+                     names=names)
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
     cols, units = {}, {}
     for name, role, unit in roles:
@@ -912,8 +920,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             cols["x"], units["x"] = (n, tab.columns[n] * _position_scale(path, n, u, tab)), "mm" if u else ""
             lone = n
     if "x" not in cols and "F" not in cols:
+        unread = any(nm.strip() and nm not in {c[0] for c in cols.values()} for nm, _, _ in roles)
         _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column {where}{over}"
-              f"{_as_read(roles, cols)}")
+              f"{_as_read(roles, cols)}" + (": rename the columns, or give their names with --names "
+                                            "('t [s],F [N],N [N]', in the file's order)" if unread else ""))
     n = len(tab)
     if n < MIN_SAMPLES:
         _fail(f"{path}: {n} samples: too short for stick-slip analysis (at least {MIN_SAMPLES})")
@@ -1264,8 +1274,8 @@ def _as_read(roles, cols) -> str:
     used = {c[0]: r for r, c in cols.items()}
     read = [f"{n} as {_ROLE_WORDS.get(used[n], used[n])}" for n, _, _ in roles if n in used]
     unread = [n for n, _, _ in roles if n not in used and n.strip()]
-    parts = ([", ".join(read)] if read else []) + ([f"not read: {', '.join(unread)}"] if unread else [])
-    return f" (read: {'; '.join(parts)})"[:400] if parts else ""
+    parts = ([f"read: {', '.join(read)}"] if read else []) + ([f"not read: {', '.join(unread)}"] if unread else [])
+    return f" ({'; '.join(parts)})"[:400] if parts else ""
 
 
 def _both_ways(m) -> bool:

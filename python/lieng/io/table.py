@@ -131,6 +131,11 @@ def _unquote(cell: str) -> str:
 _TIME_WORDS = ("time", "zeit", "uhrzeit", "heure", "hora", "ora", "tempo")
 
 
+#: a data-acquisition channel's physical name after its device's ("Dev1/ai0", "cDAQ1Mod1/ai3", "Slot2/ch1"):
+#: one name, not a name over its unit
+_DAQ_CHANNEL = re.compile(r"^\s*(?:ai|ao|ch|chan|di|do|ctr|port|line|input|in)\s*\d+\s*$", re.IGNORECASE)
+
+
 def _name_unit(cell: str) -> tuple:
     """A header cell's name and unit: ``Time [s]``, ``F (mN)``, ``time/s``
     (``Date/Time``, ``Datum/Zeit`` are one name)."""
@@ -138,7 +143,7 @@ def _name_unit(cell: str) -> tuple:
     if m:
         return m.group(1), m.group(2)
     m = _SLASH.match(cell)
-    if m and m.group(2).strip().lower() not in _TIME_WORDS:
+    if m and m.group(2).strip().lower() not in _TIME_WORDS and not _DAQ_CHANNEL.match(m.group(2)):
         return m.group(1), m.group(2)
     return cell, ""
 
@@ -201,11 +206,22 @@ def _datetime_ns(cell: str):
         return None
 
 
+#: a number written with its digits grouped by thousands and a decimal mark of the other kind, the only
+#: unambiguous grouping ("12,345.6" in an English spreadsheet's quoted cell, "12.345,6" in a German one); a
+#: grouping without a decimal mark ("12,345") is read as before: a decimal comma
+_GROUPED_POINT = re.compile(r"^[-+]?\d{1,3}(?:,\d{3})+\.\d*(?:[eE][-+]?\d+)?$")
+_GROUPED_COMMA = re.compile(r"^[-+]?\d{1,3}(?:\.\d{3})+,\d*(?:[eE][-+]?\d+)?$")
+
+
 def _number(cell: str, decimal_comma: bool) -> float:
     c = cell.strip().replace("\u2212", "-")     # a typeset minus sign (U+2212)
     if "_" in c:                          # Python reads "0_2" as 2.0: no instrument writes it
         raise ValueError(cell)
     if decimal_comma:
+        if _GROUPED_POINT.match(c):
+            c = c.replace(",", "")
+        elif _GROUPED_COMMA.match(c):
+            c = c.replace(".", "")
         c = c.replace(",", ".")
     return float(c)
 
@@ -280,12 +296,34 @@ def _numeric_cells(row: str) -> int:
     return next((len(cells) for cells, nums, _ in _split_counted(row) if len(cells) >= 2 and nums == len(cells)), 0)
 
 
+def _numeric_row(row: str) -> bool:
+    """A row that is all numbers: two or more under some separator, or one alone."""
+    return bool(_numeric_cells(row)) or bool(_ONE_NUMBER.fullmatch(row.strip()))
+
+
+def _data_separator(row: str, n: int):
+    """The separator that splits a row of numbers into ``n`` of them (a comma only when the others do
+    not: a decimal comma), ``None`` for blanks; ``False`` when none does."""
+    for sep in ("\t", ";", ",", None):
+        cells = [_unquote(c) for c in (row.split(sep) if sep else row.split())]
+        while len(cells) > 1 and not cells[-1]:
+            cells.pop()
+        try:
+            [_number(c, sep != ",") for c in cells]
+        except ValueError:
+            continue
+        if len(cells) == n:
+            return sep
+    return False
+
+
 def headerless_columns(path) -> int:
     """The number of columns when the file's first lines (its first 64 kB,
-    twenty rows at least) are all rows of as many numbers, two or more (a
+    twenty rows at least) are all rows of as many numbers, one or more (a
     table written without a header: ``numpy.savetxt``'s default), else 0."""
-    counts = [_numeric_cells(r) for r in split_lines(head(path, 65536))[:-1] if r.strip()]
-    return counts[0] if len(counts) >= 20 and counts[0] >= 2 and all(n == counts[0] for n in counts) else 0
+    counts = [_numeric_cells(r) or int(bool(_ONE_NUMBER.fullmatch(r.strip())))
+              for r in split_lines(head(path, 65536))[:-1] if r.strip()]
+    return counts[0] if len(counts) >= 20 and counts[0] >= 1 and all(n == counts[0] for n in counts) else 0
 
 
 def _data_cells(row: str) -> tuple:
@@ -570,7 +608,7 @@ def _track_names(rows, k0: int, names: list, sep) -> list | None:
     return out if len(set(out)) == len(out) else None
 
 
-def read_table(path, expect: str, missing: str = "error", unused=None, sparse=None) -> Table:
+def read_table(path, expect: str, missing: str = "error", unused=None, sparse=None, names=None) -> Table:
     """Read a delimited numeric table with a header row.
 
     Parameters
@@ -602,6 +640,12 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         ``missing="drop"`` a gap in it does not drop the row; it is filled
         linearly between the column's values (:attr:`Table.filled` counts
         them).
+    names : sequence of str, optional
+        The columns' header cells in order (``["t [s]", "F [N]"]``), given
+        by the user: they replace the file's header (a data-acquisition
+        program's ``Dev1/ai0``), or head a file that has none (its first
+        row is then data); a MATLAB or NumPy file's one matrix is read
+        column by column under them.
 
     Returns
     -------
@@ -613,8 +657,12 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         An unreadable file, a row with too few cells, a non-numeric or
         non-finite cell (naming its line and column).
     """
+    given = None if names is None else [_name_unit(_unquote(str(h))) for h in names]
+    if given is not None and (not given or not all(nm.strip() for nm, _ in given)):
+        raise LiengInputError(f"--names: {', '.join(map(str, names))!r}: a name for each column, comma-separated "
+                              f"('t [s],F [N],N [N]')")
     if str(path).lower().endswith(ARRAY_FILES):
-        return _read_arrays(path, expect)
+        return _read_arrays(path, expect, given)
     if str(path).lower().endswith(WORKBOOKS):
         text, encoding = _workbook_text(path), "xlsx"
     else:
@@ -665,7 +713,22 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
                         len([c for c in _split_header(names_c, first)[1] if c]) == len(cells_c):
                     header_row, from_comment = names_c, "units"
                     units_c = [c.strip("[]() ") for c in cells_c]
-    sep, head = _split_header(header_row, first)
+    headless = not from_comment and _numeric_row(header_row)
+    if headless and given is None:
+        ncol = max(_numeric_cells(header_row), 1)
+        raise LiengInputError(
+            f"{path}: {ncol} column{'s' if ncol > 1 else ''} of numbers and no header naming "
+            f"{'them' if ncol > 1 else 'it'}: add a first line such as 't [s],F [N],position [mm]' (or 't [s],x [mm]'), "
+            f"in the columns' order, or give them with --names")
+    if headless:
+        # the user's names head a file without a header: its first row is data
+        sep = _data_separator(header_row, len(given))
+        if sep is False:
+            raise LiengInputError(f"{path}: line {k0 + 1}: not {len(given)} numbers, as --names has names "
+                                  f"({', '.join(nm for nm, _ in given)})")
+        head, first, k1, k0 = [f"{nm} [{un}]" if un else nm for nm, un in given], None, k0 - 1, k0 - 1
+    else:
+        sep, head = _split_header(header_row, first)
     head = [_unquote(h) for h in head]
     while len(head) > 1 and not head[-1]:
         head.pop()                        # a separator at the end of every line
@@ -678,9 +741,14 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         units = units_c
     if lvm is not None:
         names, units = _lvm_names(names, units, lvm[1])
-    tracks = _track_names(rows, k0, names, sep) if len(set(names)) < len(names) else None
+    tracks = _track_names(rows, k0, names, sep) if len(set(names)) < len(names) and given is None else None
     if tracks is not None:
         names = tracks
+    if given is not None:
+        if len(given) != len(names):
+            raise LiengInputError(f"--names: {len(given)} names for the {len(names)} columns of {path}'s header "
+                                  f"({', '.join(names)[:200]})")
+        names, units = [nm for nm, _ in given], [un for _, un in given]
     ncol = len(names)
     comma = sep != ","
     start = k0 + 1
@@ -695,8 +763,8 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
             try:
                 [_number(c, comma) for c in cells if c.strip()]
             except ValueError:
-                if not any(units):
-                    units = [c.strip("[]() ") for c in cells]
+                if not any(units) or given is not None:
+                    units = units if any(units) else [c.strip("[]() ") for c in cells]
                     start = k1 + 1
                     # Origin's comments row under the units (its first cell often empty): no number in it
                     k2 = next((k for k in range(start, len(rows)) if rows[k].strip() and not _is_comment(rows[k])),
@@ -714,7 +782,7 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     else:
         data, lines = [], []
         dropped = repeated = footer = 0
-        head_key = header_row.strip()
+        head_key = None if headless else header_row.strip()
         dates = {}                            # column -> its first date-time (ns): the others are seconds from it
         days, last_ns = {}, {}                # a time of day alone: days passed (ns), the last stamp
         for r in range(start, len(rows)):
@@ -889,12 +957,14 @@ def _workbook_text(path) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _read_arrays(path, expect: str) -> Table:
+def _read_arrays(path, expect: str, given=None) -> Table:
     """A MATLAB ``.mat`` file (v4 to v7) or a NumPy ``.npz`` archive as a
     table: each numeric vector (1-D, n x 1 or 1 x n) of the most common
     length is a column named by its variable (no units: give them by the
     names' conventions or the options); variables of other lengths and
-    shapes are passed over and said."""
+    shapes are passed over and said.  ``given``: the user's (name, unit)
+    of each column of the file's one numeric matrix (n x k or k x n, k
+    the names' number), read column by column."""
     import io
     import zipfile
 
@@ -917,8 +987,21 @@ def _read_arrays(path, expect: str) -> Table:
     except (ValueError, OSError, zipfile.BadZipFile, TypeError, NotImplementedError, KeyError) as exc:
         raise LiengInputError(f"{path}: not a readable {'NumPy archive' if npz else 'MATLAB file'} "
                               f"({str(exc)[:80]})") from None
+    if given is not None:
+        k = len(given)
+        mats = [(name, np.asarray(v)) for name, v in arrays.items()
+                if np.asarray(v).dtype.kind in "iuf" and np.asarray(v).ndim == 2 and k in np.asarray(v).shape
+                and max(np.asarray(v).shape) > k]
+        if len(mats) != 1:
+            raise LiengInputError(f"{path}: --names: {len(mats)} numeric matrices of {k} columns (or rows) in the file "
+                                  f"(variables: {', '.join(sorted(arrays))[:120]}): --names reads one")
+        name, m = mats[0]
+        m = m if m.shape[1] == k else m.T
+        other = sorted(a for a in arrays if a != name)
+        arrays = {f"{name}[:, {j + 1}]": m[:, j] for j in range(k)}
+    else:
+        other = []
     vec = {}
-    other = []
     for k, v in arrays.items():
         a = np.asarray(v)
         if a.dtype.kind in "iuf" and a.ndim <= 2 and a.size >= 2 and (a.ndim == 1 or min(a.shape) == 1):
@@ -927,7 +1010,8 @@ def _read_arrays(path, expect: str) -> Table:
             other.append(k)
     if not vec:
         raise LiengInputError(f"{path}: no numeric vector in it (variables: {', '.join(sorted(arrays))[:120]}); "
-                              f"expected vectors named as the columns {expect}")
+                              f"expected vectors named as the columns {expect}, or one matrix whose columns "
+                              f"--names names")
     lengths = [v.size for v in vec.values()]
     n = max(set(lengths), key=lambda m: (lengths.count(m), m))
     names = [k for k, v in vec.items() if v.size == n]
@@ -944,7 +1028,12 @@ def _read_arrays(path, expect: str) -> Table:
     if n > MAX_ROWS:
         raise LiengInputError(f"{path}: more than {MAX_ROWS} samples: split the record")
     keep = ~missing
-    tab = Table(path, names, [""] * len(names), {k: vec[k][keep] for k in names}, np.arange(1, n + 1)[keep])
+    units = [""] * len(names)
+    if given is not None:
+        cols = {nm: vec[k] for (nm, _), k in zip(given, names)}
+        names, units = [nm for nm, _ in given], [un for _, un in given]
+        vec = cols
+    tab = Table(path, names, units, {k: vec[k][keep] for k in names}, np.arange(1, n + 1)[keep])
     tab.passed_over = sorted(other)
     tab.dropped = int(np.count_nonzero(missing))
     return tab
