@@ -96,6 +96,10 @@ VARIANTS = {
     "digit grouping by thousands, a decimal comma (a German spreadsheet's export)":
         "t [s];F [uN]\n" + _rows(lambda a, b: f"{a};".replace(".", ",")
                                  + f"{1e6 * b:,.1f}".replace(",", " ").replace(".", ",").replace(" ", ".") + "\n"),
+    "a capstan's tensions: the spring's (the tight side's) the friction force, the tail's (the slack side's) "
+    "the load": "Time [s];Spring tension [N];Tail tension [N]\n" + _rows(lambda a, b: f"{a};{b};7.5\n".replace(".", ",")),
+    "a yarn tester's output and input tensions in cN": "Time [s],Output tension [cN],Input tension [cN]\n"
+        + _rows(lambda a, b: f"{a},{100 * b:.4f},750.0\n"),
     "a force in lb (a pound read as a pound-force on a force column)": "t [s],F [lb]\n"
         + _rows(lambda a, b: f"{a},{float(b) / 4.4482216152605!r}\n"),
     "an LVDT on the slider beside the force (the slider's position, not the extension)":

@@ -83,7 +83,7 @@ _TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "msec": 1e-3, "us": 1e-6, "�
          "min": 60.0, "h": 3600.0, "hr": 3600.0}
 #: forces (N), also the gravitational units a balance or an old rig writes (gram-, kilogram-, pound-force)
 _FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "nn": 1e-9, "kn": 1e3, "dan": 10.0, "gf": 9.80665e-3,
-          "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605, "lb": 4.4482216152605}
+          "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605, "lb": 4.4482216152605, "cn": 1e-2}
 #: stresses (Pa): a shear and a normal stress stand for the forces (a rock-mechanics biaxial rig)
 _STRESS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "bar": 1e5, "psi": 6894.757}
 
@@ -159,7 +159,7 @@ def _unit_key(unit: str) -> str:
 
 #: units as they are written, for the messages
 _SHOWN = {"n": "N", "mn": "mN", "un": "uN", "µn": "µN", "nn": "nN", "kn": "kN", "dan": "daN", "kgf": "kgf", "kp": "kp", "lbf": "lbf", "gf": "gf", "pa": "Pa", "kpa": "kPa", "mpa": "MPa",
-          "gpa": "GPa"}
+          "gpa": "GPa", "cn": "cN", "lb": "lb"}
 
 
 def _fail(msg):
@@ -185,7 +185,7 @@ _WORDS = (("mu", ("coefficient", "cof", "coeff", "coeficiente", "coefficiente", 
           ("N", ("normal", "load", "normale", "clamp", "clamping", "carico", "carga", "normalkraft", "auflast",
                  "squeeze", "preload")),
           ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement", "torque",
-                 "moment", "drehmoment", "couple", "par",
+                 "moment", "drehmoment", "couple", "par", "tension", "pull", "zugkraft",
                  "drag", "f", "force", "friccion", "rozamiento", "attrito", "atrito", "tangenziale", "reibung",
                  "reibkraft", "kraft", "fuerza", "forza", "forca")),
           ("position", ("position", "stage", "distance", "travel", "track", "encoder", "actuator", "crosshead",
@@ -230,6 +230,11 @@ def _german_compounds(words: set) -> set:
     return out
 
 
+#: the words that make a tension the slack side's (a capstan's or a belt's load), not the tight side's
+_SLACK_WORDS = {"tail", "back", "backtension", "holdback", "slack", "input", "incoming", "entry", "t1", "pretension",
+                "hold"}
+
+
 def _role(name: str, unit: str = ""):
     """The column's role from its name; a unit that is a length, velocity,
     time or force rules out the roles of another dimension ("Load point
@@ -248,6 +253,10 @@ def _role(name: str, unit: str = ""):
         words = words - {"load"}             # "Tangential load", "Friction load": the friction force
     if {"load", "cell"} <= words:
         words = (words - {"load"}) | {"force"}    # a load cell is a force transducer: which force, the other words say
+    if "tension" in words and words & _SLACK_WORDS:
+        # a capstan's, a belt's or a yarn tester's slack-side tension (the tail's, the back tension, the input
+        # tension) is what the wrap multiplies, its load; the tight side's (the spring's, the output's) the friction
+        words = (words - {"tension"}) | {"normal"}
     if "squeeze" in words and words & {"film", "thickness", "gap", "h"}:
         words = words - {"squeeze"}          # a squeeze film's thickness is the lubricant's, not a load
     if {"load", "point"} <= words or "lp" in words:
