@@ -1024,3 +1024,31 @@ def test_ext_is_the_springs_extension_beside_a_normal_load(tmp_path):
     r = read_record(p, v0=1.0)
     np.testing.assert_allclose(r.x, 1e3 * F / K, atol=1e-6)
     assert r.y is not None and np.allclose(r.y, 20.0)
+
+
+def test_a_coefficient_times_the_normal_load_the_user_gives(tmp_path):
+    """``--normal-load`` (``read_record(normal_load=...)``): a friction
+    coefficient without a normal-force column (a dead weight's slider, as
+    colas2019's ``Fnorm`` = F / (m g)) times the load given, in N or with
+    its unit, reads as the force record; beside a normal-force column it is
+    refused, naming the column; on a force record it is said and not used."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    load = 2.5                                          # N
+    p = tmp_path / "mu.csv"
+    p.write_text("t [s],mu\n" + _rows(lambda a, b: f"{a},{float(b) / load!r}\n"))
+    with pytest.raises(LiengInputError, match=r"no normal force column.*--normal-load"):
+        read_record(p, v0=1.0, stiffness=K)
+    for given in (load, (load / 9.80665e-3, "gf")):
+        r = read_record(p, v0=1.0, stiffness=K, normal_load=given)
+        np.testing.assert_allclose(r.x, ref.x, rtol=1e-9, atol=1e-12)
+    both = tmp_path / "both.csv"
+    both.write_text("t [s],mu,N [N]\n" + _rows(lambda a, b: f"{a},{float(b) / load!r},{load}\n"))
+    with pytest.raises(LiengInputError, match=r"--normal-load: .* records the normal force \(column N\)"):
+        read_record(both, v0=1.0, stiffness=K, normal_load=load)
+    plain = tmp_path / "f.csv"
+    plain.write_text(PLAIN)
+    r = read_record(plain, v0=1.0, stiffness=K, normal_load=load)
+    np.testing.assert_allclose(r.x, ref.x)
+    assert any(n.startswith("--normal-load 2.5 N: not used") for n in r.notes)
+    with pytest.raises(LiengInputError, match=r"--normal-load -1: the normal load is a positive force"):
+        read_record(p, v0=1.0, stiffness=K, normal_load=-1.0)

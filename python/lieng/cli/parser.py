@@ -185,6 +185,9 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--stiffness", type=_quantity, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record (a torque record's: N·m per its angle unit, per rad when it has no angle column), or "
                     "with its unit, '2.5 N/mm', '0.05 N·m/rad'; estimated from the sticks when not given")
+    dg.add_argument("--normal-load", type=_quantity, metavar="N",
+                    help="the constant normal load (N, or with its unit, '30.1 gf') of a record whose friction is a "
+                         "coefficient (mu, COF) without a normal-force column: the friction force is mu times it")
     dg.add_argument("--highpass", type=float, metavar="TAU_S", help="the friction channel was recorded AC-coupled "
                     "(a piezoelectric force cell's charge amplifier): the time constant (s) of its high-pass, "
                     "undone before the diagnosis (a steady force otherwise sinks towards zero, read as a drifting "

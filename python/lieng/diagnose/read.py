@@ -668,22 +668,29 @@ def _force(path, cols, units, role):
     return values * _scale(path, name, unit, _FORCE, "force (or a stress: Pa, kPa, MPa)")
 
 
-def _friction_from_mu(path, cols, units, stiffness) -> str:
+def _friction_from_mu(path, cols, units, stiffness, normal_load=None) -> str:
     """A friction coefficient column (mu, COF) as the friction force: mu N
-    with a normal force column; without one, mu itself, a force in units of
-    the (constant) normal load, whose scale the sticks give (the stiffness
-    read from them is then k / N, in 1/m)."""
+    with a normal force column, or times the constant ``normal_load`` (N)
+    the user gives (a dead weight's); without either, mu itself, a force in
+    units of the (constant) normal load, whose scale the sticks give (the
+    stiffness read from them is then k / N, in 1/m)."""
     name, mu = cols["mu"]
     if units["mu"].strip() not in ("", "-", "1"):
         _fail(f"{path}: column {name}: unit {units['mu']!r}: a friction coefficient has none")
     if "N" in cols:
+        if normal_load is not None:
+            _fail(f"--normal-load: {path} records the normal force (column {cols['N'][0]}): leave --normal-load out")
         cols["F"], units["F"] = (f"{name} x {cols['N'][0]}", mu * _force(path, cols, units, "N")), \
             "Pa" if _is_stress(units["N"]) else "N"
         return f"friction force = column {name} (a friction coefficient) x column {cols['N'][0]}"
+    elif normal_load is not None:
+        cols["F"], units["F"] = (f"{name} x {normal_load:g} N", mu * normal_load), "N"
+        return f"friction force = column {name} (a friction coefficient) x --normal-load {normal_load:g} N"
     elif stiffness is not None:
         _fail(f"{path}: column {name} is a friction coefficient and there is no normal force column: the force "
-              f"--stiffness {stiffness:g} N/m would act on is unknown; add the normal force column, or leave out "
-              f"--stiffness (the scale of mu is then read from the sticks)")
+              f"--stiffness {stiffness:g} N/m would act on is unknown; give the normal load with --normal-load "
+              f"(N), add the normal force column, or leave out --stiffness (the scale of mu is then read from the "
+              f"sticks)")
     else:
         cols["F"], units["F"] = (name, mu), "N"
         return (f"column {name} is a friction coefficient and no normal force is recorded: read as a force in units "
@@ -777,7 +784,7 @@ def _drive_from_position(pos, dt, notes):
 
 
 def read_record(path, v0: float | None = None, stiffness: float | None = None, rate: float | None = None,
-                highpass: float | None = None, names=None) -> Record:
+                highpass: float | None = None, names=None, normal_load=None) -> Record:
     """Read a displacement or force record (see the module docstring).
 
     Parameters
@@ -806,6 +813,12 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         data-acquisition program's ``Dev1/ai0``) or head a file that has
         none; a ``.mat`` or ``.npz`` file's one matrix is read column by
         column under them (:func:`lieng.io.table.read_table`).
+    normal_load : float or (float, str), optional
+        The constant normal load (N; or a number and its force unit,
+        ``(30.1, "gf")``) of a record whose friction is a coefficient (mu,
+        COF) without a normal-force column (a dead weight's): the friction
+        force is mu times it.  Refused beside a normal-force column; said
+        and not used on a record of a force or an extension.
 
     Returns
     -------
@@ -914,8 +927,17 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if "t" not in cols and rate is None:
         _fail(f"{path}: no time column (t or time) {where}{over}{_as_read(roles, cols)}{unread}: add one, or give "
               f"--rate (the sampling rate, Hz)")
-    mu_note = _friction_from_mu(path, cols, units, stiffness) if "x" not in cols and "F" not in cols and "mu" in cols \
-        else None
+    if isinstance(normal_load, tuple):
+        val, unit = normal_load
+        if _unit_key(unit) not in _FORCE:
+            _fail(f"--normal-load {val:g} {unit}: unit not understood for a force (N, mN, kN, gf, kgf, lbf)")
+        normal_load = val * _FORCE[_unit_key(unit)]
+    if normal_load is not None and not (math.isfinite(normal_load) and normal_load > 0):
+        _fail(f"--normal-load {normal_load:g}: the normal load is a positive force (N)")
+    mu_read = "x" not in cols and "F" not in cols and "mu" in cols
+    mu_note = _friction_from_mu(path, cols, units, stiffness, normal_load) if mu_read else None
+    load_note = None if normal_load is None or mu_read else \
+        f"--normal-load {normal_load:g} N: not used (the record's friction is a force or an extension, not a coefficient)"
     lone = None
     if "x" not in cols and "F" not in cols and v0 is not None and "v0" not in cols:
         # one position and --v0 (a video of the slider alone, a laser on it): the slider's position, the drive
@@ -1011,7 +1033,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, pull_note, notes_pair, slider_note, mu_note,
+    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, pull_note, notes_pair, slider_note, mu_note, load_note,
                          drive_note,
                          serial_note, runs_note, dup_note, stamps_note) if m]
     if dated:
@@ -1130,7 +1152,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                  stiffness_unknown="F" in cols and "x" not in cols and stiffness is None,
                  stiffness=stiffness if "F" in cols and "x" not in cols else None,
                  stiffness_unit="Pa/m" if "F" in cols and _is_stress(units["F"]) else
-                 "1/m" if mu_note and "N" not in cols else
+                 "1/m" if mu_note and "N" not in cols and normal_load is None else
                  (f"N·m/{rotary['unit']}" if stiffness is not None else "N·m/rad") if rotary else "N/m",
                  length_unit="mrad" if rotary else "mm")
     condition(out)
