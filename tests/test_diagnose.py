@@ -171,7 +171,8 @@ def test_bad_input(tmp_path, capsys):
 
 def test_records_without_stick_slip_are_reported_not_refused(tmp_path):
     """Steady sliding, or a record of two cycles: exit 0, effect
-    no_stick_slip, the reason names the cycles found."""
+    no_stick_slip (too_few_cycles for the two: stick-slip, too short to
+    diagnose), the reason names the cycles found."""
     flat = tmp_path / "flat.csv"
     flat.write_text("t,x\n" + "".join(f"{0.001 * i},{0.001 * i}\n" for i in range(500)))
     short = synthesize("none", 0, cycles=2)
@@ -181,7 +182,7 @@ def test_records_without_stick_slip_are_reported_not_refused(tmp_path):
         out = tmp_path / (f.stem + "_o")
         assert main(["diagnose", str(f), *args, "--fn", "10", "-o", str(out), "-q"]) == 0
         d = json.loads((out / "diagnosis.json").read_text())
-        assert d["effect"] == "no_stick_slip" and "cycles" in d["reason"]
+        assert d["effect"] == ("no_stick_slip" if f is flat else "too_few_cycles") and "cycles" in d["reason"]
         assert d["drop_mm"] is None                 # no drop to read: null, not 0
     out = tmp_path / "flat_nofn"
     assert main(["diagnose", str(flat), "--v0", "1", "-o", str(out), "-q"]) == 0
@@ -1744,7 +1745,7 @@ def test_a_sawtooth_whose_fn_the_arcs_cannot_fix_is_diagnosed():
     except LiengInputError as e:
         assert "give --fn" in str(e) and "\n" not in str(e)
         return
-    assert d.effect in CANDIDATES + ("none", "unexplained", "no_stick_slip") and math.isfinite(d.gain)
+    assert d.effect in CANDIDATES + ("none", "unexplained", "no_stick_slip", "too_few_cycles") and math.isfinite(d.gain)
     json.dumps(d.to_json(), allow_nan=False)
 
 

@@ -18,7 +18,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent / "benchmarks"))
 import bench_diagnose as B  # noqa: E402
 
 GENS = B.generators()
-KNOWN = set(B.CASES) | {"unexplained", "no_stick_slip", "friction_drift", "direction_asymmetry",
+KNOWN = set(B.CASES) | {"unexplained", "no_stick_slip", "too_few_cycles", "friction_drift", "direction_asymmetry",
                         "position_dependence"}
 
 

@@ -1052,3 +1052,19 @@ def test_a_coefficient_times_the_normal_load_the_user_gives(tmp_path):
     assert any(n.startswith("--normal-load 2.5 N: not used") for n in r.notes)
     with pytest.raises(LiengInputError, match=r"--normal-load -1: the normal load is a positive force"):
         read_record(p, v0=1.0, stiffness=K, normal_load=-1.0)
+
+
+def test_a_records_one_force_of_no_known_name_is_the_friction_force(tmp_path):
+    """A LabVIEW file whose one channel is named by the data-acquisition
+    program (``Dev1/ai0``) with its unit in ``Y_Unit_Label``: the record's
+    one force column whose name says nothing is read as the friction force,
+    and said; two such columns are refused, naming both and ``--names``."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    lvm = _lvm().replace("X_Value\tFriction\tComment", "X_Value\tDev1/ai0\tComment")
+    r = _read(tmp_path, "daq.lvm", lvm)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-9, atol=1e-12)
+    assert any(n.startswith("column Dev1/ai0 (N), the record's one force") for n in r.notes)
+    two = tmp_path / "two.csv"
+    two.write_text("t [s],Dev1/ai0 [N],Dev1/ai1 [N]\n" + _rows(lambda a, b: f"{a},{b},20.0\n"))
+    with pytest.raises(LiengInputError, match=r"not read: Dev1/ai0, Dev1/ai1.*--names"):
+        read_record(two, v0=1.0, stiffness=K)

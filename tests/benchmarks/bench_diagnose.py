@@ -161,7 +161,7 @@ def table(results, gen):
     rows = [r for r in results if r["generator"] == gen]
     if not rows:
         return f"\n== {gen}: no record selected =="
-    cols = list(CASES) + ["unexplained", "no_stick_slip", "friction_drift", "direction_asymmetry", "creep",
+    cols = list(CASES) + ["unexplained", "no_stick_slip", "too_few_cycles", "friction_drift", "direction_asymmetry", "creep",
                           "error", "crash"]
     used = [c for c in cols if any(r["effect"] == c for r in rows) or c in CASES]
     w = max(len(c) for c in used)

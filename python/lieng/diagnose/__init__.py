@@ -58,6 +58,11 @@ MIN_REPLICATES = 5
 #: contact or creep makes it less), so a quarter faster is a wrong --v0,
 #: --stiffness or unit, not friction
 STICK_FASTEST = 1.25
+#: and below which: a slider that loads its spring at under a fifth of the drive velocity through the middle of
+#: its sticks would creep most of the drive away (a creeping contact loses a part of it: the lowest of the 1031
+#: cached benchmark records, a reciprocating stage's, reads 0.35), so --v0 or --stiffness is too large (stated a
+#: priori, a factor of five)
+STICK_SLOWEST = 0.2
 #: a slip lasts about half a natural period (longer where the friction falls with speed): slips shorter
 #: than this many natural periods of a given --fn say that --fn is wrong
 SLIP_SHORTEST = 0.2
@@ -80,8 +85,10 @@ class Diagnosis:
     Attributes
     ----------
     effect : str
-        The primary effect named, ``"none"``, ``"unexplained"`` or
-        ``"no_stick_slip"``.
+        The primary effect named, ``"none"``, ``"unexplained"``,
+        ``"no_stick_slip"`` (no cycle found: steady sliding) or
+        ``"too_few_cycles"`` (one to three: stick-slip too short to
+        diagnose).
     effects : list of dict
         Every effect named: name, effect size and interval, p, gain and its
         interval.
@@ -243,7 +250,9 @@ def _no_stick_slip(pr, c_n: int, notes, warnings, fn=None, src="", fd=None, fse=
     sliding = {"levels_mm": aux["levels"].tolist(), "stroke_sign": aux["sign"].tolist(),
                "presliding_travel_mm": aux["travel"].tolist(), "ramp_slope": aux["ramp_slope"].tolist(),
                "late_slope_over_ramp": aux["late_slope"].tolist(), "stuck": bool(aux.get("stuck"))}
-    return Diagnosis(effect="no_stick_slip", reason=reason, effects=effects, evidence=_finite(rows),
+    # one to three cycles are stick-slip too few to diagnose, not its absence: a label of their own
+    return Diagnosis(effect="no_stick_slip" if c_n == 0 else "too_few_cycles", reason=reason, effects=effects,
+                     evidence=_finite(rows),
                      sliding=_finite(sliding),
                      fn=fn or 0.0, fn_source=src, fn_data=fd, fn_data_se=fse, notes=notes, warnings=warnings,
                      n_cycles=c_n)
@@ -529,6 +538,11 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         warnings.append(f"x rises at {np.median(ratio):.3g} times the drive velocity in the sticks (median over "
                         f"{ratio.size}): a stuck slider loads the spring at the drive velocity, no faster; check "
                         f"--v0, --stiffness and the record's units (the baseline is fitted as given)")
+    elif ratio.size >= 2 and 0 < np.median(ratio) < STICK_SLOWEST:
+        warnings.append(f"x rises at {np.median(ratio):.3g} times the drive velocity in the sticks (median over "
+                        f"{ratio.size}): a stuck slider loads the spring at the drive velocity, and a creeping one "
+                        f"not five times slower; check --v0, --stiffness and the record's units (the baseline is "
+                        f"fitted as given)")
     base_all = fit_baseline(pr, c, fn_used)
     mode = _rig(pr, c, fn_used, base_all, notes, warnings)
     rig = mode[:2] if mode is not None and mode[2] else None

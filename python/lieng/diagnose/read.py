@@ -833,7 +833,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
                      missing="drop", unused=lambda name, unit: _kind(name, unit) is None and
-                     not _maybe_position(name, unit),
+                     not _maybe_position(name, unit) and not (unit.strip() and _unit_key(unit) in _FORCE),
                      sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular"),
                      names=names)
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
@@ -950,6 +950,17 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             # (pixels at the stated scale; a unit that is not written is read from the travel below)
             cols["x"], units["x"] = (n, tab.columns[n] * _position_scale(path, n, u, tab)), "mm" if u else ""
             lone = n
+    lone_force = None
+    if "x" not in cols and "F" not in cols:
+        # a record's one force whose name says nothing (a data-acquisition channel's, 'Dev1/ai0', with its unit
+        # from the file's header): the friction force, said; two such are refused (which is which?)
+        forces = [(n, u) for n, role, u in roles if role is None and n.strip() and u.strip() and n not in
+                  {c[0] for c in cols.values()} and _unit_key(u) in _FORCE]
+        if len(forces) == 1:
+            n, u = forces[0]
+            cols["F"], units["F"] = (n, tab.columns[n]), u
+            lone_force = (f"column {n} ({u}), the record's one force whose name lieng does not know, read as the "
+                          f"friction force (--names sets each column's role)")
     if "x" not in cols and "F" not in cols:
         unread = any(nm.strip() and nm not in {c[0] for c in cols.values()} for nm, _, _ in roles)
         _fail(f"{path}: no displacement (x), friction force (F) or friction coefficient (mu) column {where}{over}"
@@ -1033,7 +1044,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, pull_note, notes_pair, slider_note, mu_note, load_note,
+    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, pull_note, notes_pair, slider_note, mu_note, load_note, lone_force,
                          drive_note,
                          serial_note, runs_note, dup_note, stamps_note) if m]
     if dated:

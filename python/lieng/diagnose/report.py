@@ -30,7 +30,9 @@ def _f(v, spec: str) -> str:
 
 
 #: the answers that name no effect (no gain or extended trace to show)
-NO_EFFECT = ("none", "no_stick_slip", "unexplained")
+NO_EFFECT = ("none", "no_stick_slip", "too_few_cycles", "unexplained")
+#: the answers with no cycles to describe
+NO_CYCLES = ("no_stick_slip", "too_few_cycles")
 
 
 def _lu(d) -> str:
@@ -45,7 +47,7 @@ def summary_lines(d, source: str) -> list:
                                               f"{_f(gi[1], '.2f')})" if d.effect not in NO_EFFECT
                                               else "")]
     out.append(f"  {d.reason}")
-    if d.effect != "no_stick_slip":
+    if d.effect not in NO_CYCLES:
         out.append(f"  natural frequency {_f(d.fn, '.4g')} Hz ({d.fn_source}); {d.n_cycles} cycles; drop D = "
                    f"{_f(d.drop, '.4g')} {_lu(d)}")
     for w in d.warnings:
