@@ -3118,3 +3118,22 @@ def test_peaks_that_scatter_set_their_own_sticks_and_are_not_read_as_ageing():
     assert d.effect == "static_ageing" and d.gain >= 0.3
     drop = 2.0 * (np.median(pk) - 1.0)                  # an undamped Coulomb slip falls twice its excess over fk
     assert d.evidence["static_ageing"]["statistic"] == pytest.approx(beta * np.ptp(np.log(ts)) / drop, rel=0.2)
+
+
+def test_noise_that_swamps_the_slopes_does_not_turn_the_force():
+    """A sawtooth (stick ramps at the drive velocity, slips of half a period) under
+    white noise of 40 % of its drop: the slopes' sign and the increments'
+    tails say nothing, and the decision had fallen to a coin (the median
+    slope's sign), turning a record written the right way round (found by
+    the blind edge-case test); the level's sign decides there, both ways."""
+    from lieng.diagnose.segment import _turned
+
+    dt, v0, drop = 1e-3, 1.0, 0.3                       # s, mm/s, mm
+    ramp = 0.2 + v0 * dt * np.arange(300)               # a stick from 0.2 to 0.5 mm
+    slip = 0.35 + 0.15 * np.cos(np.linspace(0, np.pi, 30))  # a slip over 30 samples (half a period)
+    saw = np.tile(np.r_[ramp, slip], 60)
+    t = np.arange(saw.size) * dt
+    for seed in range(6):
+        x = saw + 0.4 * drop * np.random.default_rng(seed).standard_normal(t.size)
+        vd = np.full(t.size, v0)
+        assert not _turned([x], vd, dt) and _turned([-x], vd, dt), seed

@@ -457,6 +457,10 @@ TAIL_RATIO = 2.0
 #: the sign of x' / vd decides the orientation when at least this share of
 #: the moving samples agree on it
 SLOPE_SHARE = 0.65
+#: the slopes say nothing of the orientation when their share of either sign is within this of a half ...
+NO_SLOPE = 0.05
+#: ... and the level then decides where its median stands this many interquartile ranges from zero
+LEVEL_SPREAD = 0.5
 
 
 def _turned(xs, vd, dt) -> bool:
@@ -488,6 +492,11 @@ def _turned(xs, vd, dt) -> bool:
         if lev.size >= 20:
             m, iqr = float(np.median(lev)), float(np.subtract(*np.percentile(lev, [75, 25])))
             if abs(m) > 2.0 * iqr:
+                return m < 0
+            # noise that swamps the rise and the slips alike (white noise of a third of the drop or more):
+            # the slopes' sign is a coin's there, the level's sign still the friction's where it stands above
+            # half its spread (a force written the other way round leaves it below zero)
+            if abs(share - 0.5) < NO_SLOPE and abs(m) > LEVEL_SPREAD * iqr:
                 return m < 0
     return bool(np.median(q) < 0) if q.size else False
 
