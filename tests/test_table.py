@@ -1068,3 +1068,12 @@ def test_a_records_one_force_of_no_known_name_is_the_friction_force(tmp_path):
     two.write_text("t [s],Dev1/ai0 [N],Dev1/ai1 [N]\n" + _rows(lambda a, b: f"{a},{b},20.0\n"))
     with pytest.raises(LiengInputError, match=r"not read: Dev1/ai0, Dev1/ai1.*--names"):
         read_record(two, v0=1.0, stiffness=K)
+
+
+def test_a_normal_force_of_zero_throughout_is_not_read_and_said(tmp_path):
+    """A normal-force column of zeros (a channel not connected) loads
+    nothing: it is left out, and said (it had been accepted silently)."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    r = _read(tmp_path, "n0.csv", "t [s],F [N],N [N]\n" + _rows(lambda a, b: f"{a},{b},0\n"))
+    np.testing.assert_allclose(r.x, ref.x)
+    assert r.y is None and any("zero throughout" in n for n in r.notes)

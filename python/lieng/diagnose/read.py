@@ -1093,6 +1093,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
             y, y_force = _force(path, cols, units, "N"), True
         elif "y" in cols:
             y = cols["y"][1] * _scale(path, cols["y"][0], units["y"], _LENGTH, "displacement")
+    if y_force and not np.any(y):
+        # a normal force of zero throughout (a channel not connected, a bridge not powered) loads nothing
+        notes.append(f"the normal force {cols['N'][0]} is zero throughout (a channel not connected?): not read")
+        y, y_force = None, False
     if y_force and float(np.mean(y < 0)) > 0.99:
         # a normal force written negative throughout: a compression, as a load cell's z axis reads it
         y = -y
