@@ -231,8 +231,7 @@ def _german_compounds(words: set) -> set:
 
 
 #: the words that make a tension the slack side's (a capstan's or a belt's load), not the tight side's
-_SLACK_WORDS = {"tail", "back", "backtension", "holdback", "slack", "input", "incoming", "entry", "t1", "pretension",
-                "hold"}
+_SLACK_WORDS = {"tail", "back", "holdback", "slack", "input", "incoming", "entry", "t1", "pre", "hold"}
 
 
 def _role(name: str, unit: str = ""):
