@@ -100,6 +100,18 @@ VARIANTS = {
     "the load": "Time [s];Spring tension [N];Tail tension [N]\n" + _rows(lambda a, b: f"{a};{b};7.5\n".replace(".", ",")),
     "a yarn tester's output and input tensions in cN": "Time [s],Output tension [cN],Input tension [cN]\n"
         + _rows(lambda a, b: f"{a},{100 * b:.4f},750.0\n"),
+    "Chinese names and units (时间, 摩擦力 in 牛顿, 正压力)": "时间(秒),摩擦力(牛顿),正压力(牛顿)\n"
+        + _rows(lambda a, b: f"{a},{b},10.0\n"),
+    "Japanese names (時間, 摩擦力, 垂直荷重)": "時間[s],摩擦力[N],垂直荷重[N]\n" + _rows(lambda a, b: f"{a},{b},10.0\n"),
+    "Dutch names": "Tijd (s);Wrijvingskracht (N);Normaalkracht (N)\n" + _rows(lambda a, b: f"{a};{b};10\n".replace(".", ",")),
+    "Polish names": "Czas [s],Siła tarcia [N],Siła nacisku [N]\n" + _rows(lambda a, b: f"{a},{b},10.0\n"),
+    "a German test machine's Prüfzeit": "Prüfzeit [s];Standardkraft [N]\n" + _rows(lambda a, b: f"{a};{b}\n".replace(".", ",")),
+    "a film tester's force in grams": "Time (s),Force (g)\n" + _rows(lambda a, b: f"{a},{float(b) / 9.80665e-3!r}\n"),
+    "W, the tribologist's normal load, beside Ft": "t (s),Ft (N),W (N)\n" + _rows(lambda a, b: f"{a},{b},10.0\n"),
+    "a Bluehill channel's qualifier in parentheses, with a row of units": '"Time","Load","Tensile strain (Extension)"\n'
+        '"(s)","(N)","(%)"\n' + _rows(lambda a, b: f'"{a}","{b}","0.0"\n'),
+    "a logger's year-first date-times with slashes": "Date&Time,F [N]\n"
+        + _rows(lambda a, b: f"2024/03/01 10:22:{1 + a:06.3f},{b}\n"),
     "a force in lb (a pound read as a pound-force on a force column)": "t [s],F [lb]\n"
         + _rows(lambda a, b: f"{a},{float(b) / 4.4482216152605!r}\n"),
     "an LVDT on the slider beside the force (the slider's position, not the extension)":
@@ -1077,3 +1089,54 @@ def test_a_normal_force_of_zero_throughout_is_not_read_and_said(tmp_path):
     r = _read(tmp_path, "n0.csv", "t [s],F [N],N [N]\n" + _rows(lambda a, b: f"{a},{b},0\n"))
     np.testing.assert_allclose(r.x, ref.x)
     assert r.y is None and any("zero throughout" in n for n in r.notes)
+
+
+def test_a_japanese_export_in_shift_jis(tmp_path):
+    """A Japanese testing machine's export in Shift-JIS (cp932: 時間,
+    試験力) is decoded as such; a German Windows-1252 export (ü, µ, °) is
+    still read as Windows-1252."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    p = tmp_path / "ja.csv"
+    p.write_bytes(("時間 (s),試験力 (N)\n" + _rows(lambda a, b: f"{a},{b}\n")).encode("cp932"))
+    r = read_record(p, v0=1.0, stiffness=K)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-9, atol=1e-12)
+    de = tmp_path / "de.csv"
+    de.write_bytes(("Prüfzeit [s];Kraft [µN];Temperatur [°C]\n"
+                    + _rows(lambda a, b: f"{a};{1e6 * b:.1f};21\n".replace(".", ","))).encode("cp1252"))
+    np.testing.assert_allclose(read_record(de, v0=1.0, stiffness=K).x, ref.x, rtol=1e-9, atol=1e-12)
+
+
+def test_what_a_blind_test_of_vendors_names_misread(tmp_path):
+    """A rheometer's drive angle named as a deflection ('Deflection Angle',
+    Anton Paar; 'Displacement (rad)', TA) turns one way: the drive's, not
+    the spring's twist (read as the twist it had made a confident
+    no_stick_slip); an unnamed force beside a column lieng cannot name
+    (a coefficient in another language) or standing still (a normal load)
+    is not taken for the friction; a position that never moves beside
+    --v0 (an SRV's 'Stroke' setting) gives way to --v0; a data row of more
+    values than the header has names is refused."""
+    t = np.arange(4000) * 2e-3
+    ang = 0.1 * t                                       # rad: the drive turns at 0.1 rad/s
+    torque = 0.02 + 0.004 * ((0.1 * t) % 0.05) / 0.05   # N·m: a sawtooth
+    p = tmp_path / "mcr.csv"
+    p.write_text("Time [s]\tTorque [mN·m]\tNormal Force [N]\tDeflection Angle [mrad]\tRotational Speed [1/min]\n"
+                 + "".join(f"{a:.4f}\t{1e3 * q:.6f}\t5.0\t{1e3 * g:.5f}\t{0.1 * 60 / (2 * np.pi):.6f}\n"
+                           for a, q, g in zip(t, torque, ang)))
+    r = read_record(p, stiffness=(0.2, "N·m/rad"))
+    np.testing.assert_allclose(r.x, 1e3 * torque / 0.2, rtol=1e-6)      # the twist is the torque's, in mrad
+    assert "Deflection Angle (mrad) as the drive's angle" in r.notes[0] or "as the drive's angular speed" in r.notes[0]
+    bare = tmp_path / "bare.csv"
+    bare.write_text("t [s],Koef,Dev1/ai0 [N]\n" + _rows(lambda a, b: f"{a},{float(b) / 10:.6f},10.0\n"))
+    still = tmp_path / "still.csv"
+    still.write_text("t [s],Dev1/ai0 [N]\n" + _rows(lambda a, b: f"{a},10.0\n"))
+    for f in (bare, still):
+        with pytest.raises(LiengInputError, match=r"not read: .*Dev1/ai0"):
+            read_record(f, v0=1.0, stiffness=K)
+    srv = tmp_path / "srv.csv"
+    srv.write_text("Time [s];Friction force [N];Stroke [mm]\n" + _rows(lambda a, b: f"{a};{b};1\n".replace(".", ",")))
+    r = read_record(srv, v0=1.0, stiffness=K)
+    assert any(n.startswith("column Stroke never moves") for n in r.notes) and not r.drive_recorded
+    ragged = tmp_path / "ragged.csv"
+    ragged.write_text("t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b},10.0\n"))
+    with pytest.raises(LiengInputError, match=r"line 2: 3 values where the header names 2 columns"):
+        read_record(ragged, v0=1.0, stiffness=K)

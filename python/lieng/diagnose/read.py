@@ -56,7 +56,7 @@ MAX_SAMPLES = 5_000_000
 MIN_SAMPLES = 50
 
 _NAMES = {
-    "t": ("t", "time", "timestamp", "datetime", "date_time", "date", "zeit", "temps", "x_value"),
+    "t": ("t", "time", "timestamp", "datetime", "date_time", "date", "zeit", "temps", "x_value", "tijd", "czas"),
     "x": ("x", "disp", "displacement", "extension", "ext", "spring", "deflection", "defl", "dx", "d_x",
           "lateral_deflection"),
     "y": ("y", "xn", "normal_disp", "normal_displacement", "dz", "d_z", "normal_deflection"),
@@ -67,9 +67,9 @@ _NAMES = {
           "tau_s", "tob", "torque_on_bit"),
     "mu": ("mu", "µ", "μ", "cof", "coefficient_of_friction", "friction_coefficient", "fnorm", "mu_k"),
     "N": ("n", "normal", "load", "normal_force", "fnormal", "fn", "fz", "f_n", "f_z", "normal_load", "normalkraft",
-          "sigma", "sigma_n", "normal_stress", "fnorm", "f_norm", "wob", "weight_on_bit"),
+          "sigma", "sigma_n", "normal_stress", "fnorm", "f_norm", "wob", "weight_on_bit", "w"),
     "position": ("position", "pos", "stage", "stage_position", "drive_position", "xdrive", "weg", "distance",
-                 "sliding_distance", "travel", "xd", "x_d", "stroke"),
+                 "sliding_distance", "travel", "xd", "x_d", "stroke", "s", "d", "u"),
 }
 #: time column names whose plain numbers between 20000 and 80000 are a spreadsheet's serial dates (days)
 EXCEL_DAY_NAMES = ("date", "datetime", "date_time", "date/time", "timestamp", "time stamp", "date time")
@@ -83,7 +83,11 @@ _TIME = {"": 1.0, "s": 1.0, "sec": 1.0, "ms": 1e-3, "msec": 1e-3, "us": 1e-6, "�
          "min": 60.0, "h": 3600.0, "hr": 3600.0}
 #: forces (N), also the gravitational units a balance or an old rig writes (gram-, kilogram-, pound-force)
 _FORCE = {"": 1.0, "n": 1.0, "mn": 1e-3, "un": 1e-6, "µn": 1e-6, "nn": 1e-9, "kn": 1e3, "dan": 10.0, "gf": 9.80665e-3,
-          "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605, "lb": 4.4482216152605, "cn": 1e-2}
+          "kgf": 9.80665, "kp": 9.80665, "lbf": 4.4482216152605, "lb": 4.4482216152605, "cn": 1e-2,
+          "kg": 9.80665, "g": 9.80665e-3}
+#: the force units that name nothing else (a mass's kg and g, a pound's lb, read as forces on a force column, also
+#: stand for masses and an accelerometer's g): a column of no known name is taken for a force only in these
+_FORCE_ONLY = frozenset(_FORCE) - {"", "kg", "g", "lb"}
 #: stresses (Pa): a shear and a normal stress stand for the forces (a rock-mechanics biaxial rig)
 _STRESS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "bar": 1e5, "psi": 6894.757}
 
@@ -151,15 +155,22 @@ class Record:
         return float(self.t[1] - self.t[0])
 
 
+#: units written in Chinese or Japanese characters, as the tables below spell them
+_CJK_UNITS = {"秒": "s", "毫秒": "ms", "分": "min", "牛顿": "n", "牛": "n", "毫牛": "mn", "千牛": "kn", "毫米": "mm",
+              "微米": "um", "米": "m", "厘米": "cm", "毫米/秒": "mm/s", "毫米每秒": "mm/s"}
+
+
 def _unit_key(unit: str) -> str:
     """A unit as the tables below spell it: lower case, no blanks, the micro
-    sign for a Greek mu (U+03BC, as some loggers write it)."""
-    return unit.strip().lower().replace(" ", "").replace("\u03bc", "\u00b5")
+    sign for a Greek mu (U+03BC, as some loggers write it); a unit in
+    Chinese or Japanese characters as its symbol (秒 s, 牛顿 N, 毫米 mm)."""
+    u = unit.strip().lower().replace(" ", "").replace("\u03bc", "\u00b5")
+    return _CJK_UNITS.get(u, u)
 
 
 #: units as they are written, for the messages
 _SHOWN = {"n": "N", "mn": "mN", "un": "uN", "µn": "µN", "nn": "nN", "kn": "kN", "dan": "daN", "kgf": "kgf", "kp": "kp", "lbf": "lbf", "gf": "gf", "pa": "Pa", "kpa": "kPa", "mpa": "MPa",
-          "gpa": "GPa", "cn": "cN", "lb": "lb"}
+          "gpa": "GPa", "cn": "cN", "lb": "lb", "kg": "kg", "g": "g"}
 
 
 def _fail(msg):
@@ -183,17 +194,20 @@ def _check_v0(v0, unit: str = "mm/s", to_range: float = 1.0) -> None:
 #: match wins (a normal word before a force's: "clamp_force" is the normal force)
 _WORDS = (("mu", ("coefficient", "cof", "coeff", "coeficiente", "coefficiente", "reibwert", "reibungskoeffizient")),
           ("N", ("normal", "load", "normale", "clamp", "clamping", "carico", "carga", "normalkraft", "auflast",
-                 "squeeze", "preload")),
+                 "squeeze", "preload", "normaalkracht", "nacisku", "docisku")),
           ("F", ("friction", "tangential", "lateral", "shear", "traction", "tangentielle", "frottement", "torque",
                  "moment", "drehmoment", "couple", "par", "tension", "pull", "zugkraft",
                  "drag", "f", "force", "friccion", "rozamiento", "attrito", "atrito", "tangenziale", "reibung",
-                 "reibkraft", "kraft", "fuerza", "forza", "forca")),
+                 "reibkraft", "kraft", "fuerza", "forza", "forca", "wrijving", "wrijvingskracht", "kracht", "tarcia",
+                 "sila", "sia")),
           ("position", ("position", "stage", "distance", "travel", "track", "encoder", "actuator", "crosshead",
-                        "posicion", "posizione", "posicao", "weg", "stroke", "hub")),
-          ("v0", ("velocity", "speed", "vitesse", "velocidad", "velocita", "velocidade", "geschwindigkeit")),
-          ("t", ("time", "temps", "tiempo", "tempo", "zeit")),
+                        "posicion", "posizione", "posicao", "weg", "stroke", "hub", "pos", "positie", "pozycja")),
+          ("v0", ("velocity", "speed", "vitesse", "velocidad", "velocita", "velocidade", "geschwindigkeit",
+                  "snelheid", "predkosc")),
+          ("t", ("time", "temps", "tiempo", "tempo", "zeit", "tijd", "czas")),
           ("x", ("displacement", "extension", "deplacement", "deflection", "laser", "lds", "lvdt", "dvrt",
-                 "capacitive", "eddy", "desplazamiento", "spostamento", "deslocamento", "verschiebung")))
+                 "capacitive", "eddy", "desplazamiento", "spostamento", "deslocamento", "verschiebung", "verplaatsing",
+                 "przemieszczenie")))
 
 
 #: the roles a column of a given unit's dimension can have
@@ -201,10 +215,27 @@ _FITS = (("position", _LENGTH), ("x", _LENGTH), ("y", _LENGTH), ("v0", _VELOCITY
          ("N", _FORCE), ("F", _STRESS), ("N", _STRESS))
 
 
+#: Chinese and Japanese terms of a column name, as the English words they stand for (longest first: 摩擦系数 is a
+#: coefficient, not a friction force; 垂直荷重 a normal load)
+_CJK_WORDS = (("摩擦系数", "coefficient"), ("摩擦係数", "coefficient"), ("摩擦系數", "coefficient"),
+              ("经过时间", "time"), ("経過時間", "time"), ("时间", "time"), ("時間", "time"), ("时刻", "time"),
+              ("時刻", "time"), ("摩擦力", "friction"), ("垂直荷重", "normal"), ("法向力", "normal"),
+              ("法向载荷", "normal"), ("正压力", "normal"), ("载荷", "load"), ("荷重", "load"), ("试验力", "force"),
+              ("試験力", "force"), ("位移", "displacement"), ("変位", "displacement"), ("变位", "displacement"),
+              ("ストローク", "stroke"), ("行程", "stroke"), ("速度", "speed"))
+
+
 def _words(name: str) -> set:
-    """A column name's words, lower case, with their accents taken off ("Déplacement", "Force normale")."""
-    return set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", name.strip().lower())
-                        .encode("ascii", "ignore").decode()))
+    """A column name's words, lower case, with their accents taken off ("Déplacement", "Force normale"), and
+    the English words of its Chinese or Japanese terms (:data:`_CJK_WORDS`)."""
+    out = set(re.split(r"[^a-z0-9]+", unicodedata.normalize("NFKD", name.strip().lower())
+                       .encode("ascii", "ignore").decode()))
+    rest = name
+    for term, word in _CJK_WORDS:
+        if term in rest:
+            out.add(word)
+            rest = rest.replace(term, " ")
+    return out
 
 
 #: German compounds' first parts that make a force (-kraft) the normal one: a clamp's, a blank holder's, a
@@ -227,6 +258,8 @@ def _german_compounds(words: set) -> set:
             out.add("displacement" if w.startswith("feder") else "weg")
         elif w.endswith("geschwindigkeit") and len(w) > 15:
             out.add("geschwindigkeit")
+        elif w.endswith("zeit") and len(w) > 4:
+            out.add("zeit")                 # Prüfzeit, Messzeit: the test's clock
     return out
 
 
@@ -248,6 +281,8 @@ def _role(name: str, unit: str = ""):
     if fits is not None and not fits:
         fits = None                      # a unit of none of them: the name decides (and the unit's check fails)
     words = _german_compounds(_words(key))
+    if words & {"strain", "dehnung"}:
+        return None                      # a strain ('Tensile strain (Extension)', %): a testing machine's, no role
     if "load" in words and words & {"friction", "tangential", "lateral", "shear", "traction"}:
         words = words - {"load"}             # "Tangential load", "Friction load": the friction force
     if {"load", "cell"} <= words:
@@ -558,9 +593,22 @@ def _rotary(path, roles, tab, cols, units):
             speeds.append((n, u))
     torque = "F" in cols and torque_scale(units["F"]) is not None
     twist = [(n, u) for n, u in angles if _words(n) & _TWIST_WORDS and not _words(n) & (_STAGE_WORDS | {"input"})]
+    # an angle named for a deflection that turns one way only is the drive's (a rheometer's 'Deflection Angle',
+    # 'Displacement (rad)': the measuring system's rotation); a spring's twist rises and falls every cycle
+    along = [(n, u) for n, u in twist if _one_way(tab.columns[n])]
+    twist = [q for q in twist if q not in along]
     if not torque and not ("x" not in cols and "F" not in cols and twist):
         return None
     used = []
+    if torque and "N" not in cols:
+        # a rheometer's 'Axial force' (along the shaft) beside the torque: the normal force
+        axial = [n for n, role, u in roles if role == "F" and "axial" in _words(n) and n != cols["F"][0]
+                 and _unit_key(u or "") in _FORCE]
+        if axial:
+            n = axial[0]
+            u = dict((a, b) for a, _, b in roles)[n]
+            cols["N"], units["N"] = (n, tab.columns[n]), u
+            used.append(f"{n} ({u}) as the normal force")
     if torque:
         name, vals = cols["F"]
         used.append(f"{name} ({units['F']}) as the friction torque")
@@ -569,7 +617,7 @@ def _rotary(path, roles, tab, cols, units):
         name, u = twist[0]
         cols["x"], units["x"] = (name, tab.columns[name] * _ANGLE[_unit_key(u)]), "mm"
         used.append(f"{name} ({u}) as the torsion spring's twist")
-    drive = [(n, u) for n, u in angles if (n, u) not in twist[:1] and _words(n) & _ROTOR_WORDS]
+    drive = [(n, u) for n, u in angles if (n, u) not in twist[:1] and (_words(n) & _ROTOR_WORDS or (n, u) in along)]
     turned = [(n, u) for n, u in speeds if _words(n) & _TURNED_WORDS and not _words(n) & _DRIVING_WORDS]
     if turned:
         # the speed of what the spring turns (a bit's, a lower disc's): the slider's, not the drive's
@@ -832,7 +880,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
                      missing="drop", unused=lambda name, unit: _kind(name, unit) is None and
-                     not _maybe_position(name, unit) and not (unit.strip() and _unit_key(unit) in _FORCE),
+                     not _maybe_position(name, unit) and not (unit.strip() and _unit_key(unit) in _FORCE_ONLY),
                      sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular"),
                      names=names)
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
@@ -953,9 +1001,19 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     if "x" not in cols and "F" not in cols:
         # a record's one force whose name says nothing (a data-acquisition channel's, 'Dev1/ai0', with its unit
         # from the file's header): the friction force, said; two such are refused (which is which?)
-        forces = [(n, u) for n, role, u in roles if role is None and n.strip() and u.strip() and n not in
-                  {c[0] for c in cols.values()} and _unit_key(u) in _FORCE]
-        if len(forces) == 1:
+        taken = {c[0] for c in cols.values()}
+        forces = [(n, u) for n, role, u in roles if role is None and n.strip() and u.strip() and n not in taken
+                  and _unit_key(u) in _FORCE_ONLY]
+        # not beside a column of no unit that lieng cannot name (a friction coefficient in a language it does
+        # not read: the force is then its normal load), nor when the force stands still (a normal load's does;
+        # a friction force in stick-slip swings by its drops)
+        bare = [n for n, role, u in roles if role is None and n.strip() and not u.strip() and n not in taken
+                and not _words(n) & _NOT_A_QUANTITY]
+        if len(forces) == 1 and not bare:
+            v = tab.columns[forces[0][0]]
+            lo, hi, mid = np.nanpercentile(v, [1, 99, 50])
+            forces = forces if hi - lo > LONE_FORCE_SWING * abs(mid) else []
+        if len(forces) == 1 and not bare:
             n, u = forces[0]
             cols["F"], units["F"] = (n, tab.columns[n]), u
             lone_force = (f"column {n} ({u}), the record's one force whose name lieng does not know, read as the "
@@ -1107,6 +1165,12 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         vcol = cols["v0"][1] * _scale(path, cols["v0"][0], units["v0"], _VELOCITY, "velocity")
     elif "position" in cols:
         pos = cols["position"][1] * _scale(path, cols["position"][0], units["position"], _LENGTH, "position")
+        if v0 is not None and not np.nanmax(pos) - np.nanmin(pos) > 1e-9:
+            # a position that never moves beside --v0 (an SRV's 'Stroke', the amplitude set): a setting, not
+            # the drive; the drive is --v0
+            notes.append(f"column {cols['position'][0]} never moves: a setting, not the drive's position (the "
+                         f"drive is --v0)")
+            pos = None
     elif v0 is None:
         if angle is not None:
             _fail(f"{path}: column {angle} is an angle (a rotating drive's): the drive velocity is needed as a "
@@ -1490,6 +1554,15 @@ def _stage_beside_force(roles, tab, cols, units, stiffness=None) -> str | None:
             cols.pop(role), units.pop(role)
     cols["position"], units["position"] = (name, tab.columns[name]), unit
     return f"column {name} (a stage axis in {unit}, beside the forces) is read as the drive's position"
+
+
+#: a force column of no known name is read as the friction force only when it swings by more than this share of
+#: its median (1st to 99th percentile): a normal load held constant does not
+LONE_FORCE_SWING = 0.02
+#: the words of a column that holds no quantity (a comment, a counter, an index)
+_NOT_A_QUANTITY = {"comment", "comments", "note", "notes", "remark", "no", "nr", "index", "idx", "sample", "point",
+                   "count", "counter", "cycle", "cycles", "lap", "laps", "step", "segment", "status", "flag", "marker",
+                   "event", "trigger"}
 
 
 def _one_way(x) -> bool:

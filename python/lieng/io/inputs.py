@@ -83,8 +83,11 @@ def head(path, nbytes: int = 4096, *, what: str = "file") -> str:
 def read_table_text(path, *, max_bytes: int = MAX_BYTES) -> tuple[str, str]:
     """The text of a table as instruments export it, and its encoding:
     UTF-8 (a byte-order mark is dropped); else UTF-16 with its byte-order
-    mark; else Windows-1252 (a Latin-1 export: "Kraft [N]", "µm").  A file
-    with NUL bytes and none of these is refused (a binary file)."""
+    mark; else Shift-JIS (cp932: a Japanese instrument's export, "時間",
+    "試験力") where the whole file decodes so and its first 4 kB hold kanji
+    or kana written in two bytes; else Windows-1252 (a Latin-1 export:
+    "Kraft [N]", "µm").  A file with NUL bytes and none of these is refused
+    (a binary file)."""
     raw = _read_raw(path, "table", max_bytes)
     try:
         return raw.decode("utf-8").removeprefix("\ufeff"), "utf-8"
@@ -97,6 +100,15 @@ def read_table_text(path, *, max_bytes: int = MAX_BYTES) -> tuple[str, str]:
             pass
     if b"\x00" in raw:
         raise LiengInputError(f"{path}: not valid UTF-8 text (a binary file?)")
+    try:
+        text = raw.decode("cp932")
+        # (a Latin-1 file seldom decodes as Shift-JIS throughout; where it does, its accented letters become
+        # half-width kana, one byte each, never the two-byte kanji, kana or full-width forms a Japanese
+        # header is written in)
+        if re.search(r"[\u3040-\u30ff\u4e00-\u9fff\uff01-\uff5e]", text[:4096]):
+            return text, "shift_jis"
+    except UnicodeDecodeError:
+        pass
     return raw.decode("cp1252", errors="replace"), "windows-1252"
 
 

@@ -149,7 +149,7 @@ def _name_unit(cell: str) -> tuple:
 
 
 #: a logger's date-time stamp: ISO 8601 date, a blank or T, the time of day to any fraction of a second
-_DATETIME = re.compile(r"^\s*(\d{4}-\d{2}-\d{2})[ T](\d{2}:\d{2}:\d{2}(?:[.,]\d+)?)\s*$")
+_DATETIME = re.compile(r"^\s*(\d{4}([-/])\d{2}\2\d{2})[ T](\d{2}:\d{2}:\d{2}(?:[.,]\d+)?)\s*$")
 #: a day-first date as Europe writes it (05/03/2024, 05.03.2024; month-first when the second number
 #: exceeds 12), then the time of day; with AM or PM after it, an American month-first date
 #: (3/5/2024 12:59:50.000 PM; day-first when the first number exceeds 12)
@@ -180,7 +180,8 @@ def _datetime_ns(cell: str):
     adds a day where the clock passes midnight)."""
     m = _DATETIME.match(cell)
     if m:
-        day, clock = m.group(1), m.group(2)
+        # (year first: ISO 8601's dashes, or a Japanese logger's slashes, 2026/12/07)
+        day, clock = m.group(1).replace("/", "-"), m.group(3)
     elif (m := _DMY.match(cell)):
         a, b = int(m.group(1)), int(m.group(3))
         if m.group(6):
@@ -763,7 +764,13 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
             try:
                 [_number(c, comma) for c in cells if c.strip()]
             except ValueError:
-                if not any(units) or given is not None:
+                # (a header's parenthesis that is no unit, Bluehill's "Tensile strain (Extension)", is part of
+                # the name when a row of units follows)
+                odd = [j for j, u in enumerate(units) if u and not _unit_cell(u)]
+                if not any(units) or given is not None or odd:
+                    if odd and given is None:
+                        names = [f"{nm} ({u})" if j in odd else nm for j, (nm, u) in enumerate(zip(names, units))]
+                        units = [""] * len(units)
                     units = units if any(units) else [c.strip("[]() ") for c in cells]
                     start = k1 + 1
                     # Origin's comments row under the units (its first cell often empty): no number in it
@@ -771,6 +778,15 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
                               None)
                     if k2 is not None and not _data_cells(rows[k2])[1] and _text_row(rows[k2], ncol):
                         start, comments_row = k2 + 1, k2 + 1
+    # a first data row of more values than the header has names: a name left out of the header, and every
+    # column after it would be read under its neighbour's name
+    k_first = next((k for k in range(start, len(rows)) if rows[k].strip() and not _is_comment(rows[k])), None)
+    if k_first is not None and sep is not None:
+        vals = [c for c in _cells(rows[k_first], sep) if _unquote(c)]
+        if len(vals) > ncol and all(_is_number_cell(c, comma or (sep == "," and "," in c)) for c in vals):
+            raise LiengInputError(f"{path}: line {k_first + 1}: {len(vals)} values where the header names {ncol} "
+                                  f"columns ({', '.join(names)[:160]}): a column's name is missing from the header "
+                                  f"(give them all with --names)")
     skip = [bool(unused and unused(n, u)) for n, u in zip(names, units)]
     thin = [bool(missing == "drop" and sparse and not skip[j] and sparse(n, u))
             for j, (n, u) in enumerate(zip(names, units))]
@@ -1087,6 +1103,14 @@ def _footer_from(rows, r: int) -> bool:
     """Whether the rows from ``r`` on hold no row of numbers (a summary
     written after the data: "Mean force: 2.1 N", "End of test")."""
     return not any(_numeric_cells(q) for q in rows[r:] if q.strip() and not _is_comment(q))
+
+
+def _is_number_cell(cell: str, decimal_comma: bool) -> bool:
+    try:
+        _number(_unquote(cell), decimal_comma)
+        return True
+    except ValueError:
+        return False
 
 
 def _cells(row: str, sep):
