@@ -1140,3 +1140,14 @@ def test_what_a_blind_test_of_vendors_names_misread(tmp_path):
     ragged.write_text("t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b},10.0\n"))
     with pytest.raises(LiengInputError, match=r"line 2: 3 values where the header names 2 columns"):
         read_record(ragged, v0=1.0, stiffness=K)
+
+
+def test_a_one_letter_name_is_read_by_convention_only_in_its_roles_unit(tmp_path):
+    """``W`` is the load and ``s``, ``d``, ``u`` the travel only in a force
+    or a length: ``w [rad/s]`` is an angular speed, ``u [V]`` a raw channel
+    (no role; before the convention they had none either)."""
+    from lieng.diagnose.read import _column_role
+
+    assert _column_role("W", "N")[0] == "N" and _column_role("s", "mm")[0] == "position"
+    assert _column_role("w", "rad/s")[0] is None and _column_role("u", "V")[0] is None
+    assert _column_role("s", "s")[0] == "t"

@@ -267,6 +267,17 @@ def _german_compounds(words: set) -> set:
 _SLACK_WORDS = {"tail", "back", "holdback", "slack", "input", "incoming", "entry", "t1", "pre", "hold"}
 
 
+#: one-letter names read by convention (W the load, s, d, u the travel): their unit must be of that role's
+#: dimension, or the column has no role
+_WEAK_NAMES = {"w": _FORCE, "s": _LENGTH, "d": _LENGTH, "u": _LENGTH}
+
+
+def _weak_unit_misfits(key: str, u: str, unit: str) -> bool:
+    """Whether a one-letter conventional name's unit is not of its role's dimension (``s`` in seconds is the
+    time, which the unit decides as before)."""
+    return u not in _WEAK_NAMES[key] and not (key == "s" and u in _TIME)
+
+
 def _role(name: str, unit: str = ""):
     """The column's role from its name; a unit that is a length, velocity,
     time or force rules out the roles of another dimension ("Load point
@@ -295,6 +306,8 @@ def _role(name: str, unit: str = ""):
         words = words - {"squeeze"}          # a squeeze film's thickness is the lubricant's, not a load
     if {"load", "point"} <= words or "lp" in words:
         words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
+    if key in _WEAK_NAMES and u and _weak_unit_misfits(key, u, unit):
+        return None                      # "w [rad/s]" is an angular speed, "u [V]" a raw channel: not W or u
     named = [role for role, alts in _NAMES.items() if key in alts] + \
             [role for role, alts in _WORDS if words & set(alts)]
     if "v" in words and words & _STAGE_WORDS:
