@@ -615,11 +615,10 @@ def _rotary(path, roles, tab, cols, units):
     used = []
     if torque and "N" not in cols:
         # a rheometer's 'Axial force' (along the shaft) beside the torque: the normal force
-        axial = [n for n, role, u in roles if role == "F" and "axial" in _words(n) and n != cols["F"][0]
+        axial = [(n, u) for n, role, u in roles if role == "F" and "axial" in _words(n) and n != cols["F"][0]
                  and _unit_key(u or "") in _FORCE]
         if axial:
-            n = axial[0]
-            u = dict((a, b) for a, _, b in roles)[n]
+            n, u = axial[0]
             cols["N"], units["N"] = (n, tab.columns[n]), u
             used.append(f"{n} ({u}) as the normal force")
     if torque:

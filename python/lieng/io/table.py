@@ -1005,9 +1005,8 @@ def _read_arrays(path, expect: str, given=None) -> Table:
                               f"({str(exc)[:80]})") from None
     if given is not None:
         k = len(given)
-        mats = [(name, np.asarray(v)) for name, v in arrays.items()
-                if np.asarray(v).dtype.kind in "iuf" and np.asarray(v).ndim == 2 and k in np.asarray(v).shape
-                and max(np.asarray(v).shape) > k]
+        mats = [(name, a) for name, a in ((nm, np.asarray(v)) for nm, v in arrays.items())
+                if a.dtype.kind in "iuf" and a.ndim == 2 and k in a.shape and max(a.shape) > k]
         if len(mats) != 1:
             raise LiengInputError(f"{path}: --names: {len(mats)} numeric matrices of {k} columns (or rows) in the file "
                                   f"(variables: {', '.join(sorted(arrays))[:120]}): --names reads one")
