@@ -38,11 +38,11 @@ the model of
   only the instants within the record's slips (from the median peak to the
   median arrest, relative to that crossing): what x does after the arrest,
   a second mode's rebound or a sensor's ringing, is the rig's, which no
-  model of the slider has;
-* when the extension predicts a part of the normal channel that is not
-  locked to the motion (triggering): the RMS difference, in time, between
-  that part of the record's y and of the model's (each less the baseline's
-  regression of y on x and x'), over y's spread.
+  model of the slider has.
+
+The normal channel is not compared (stop 67): a triggering extension's line
+in it is the effect's own statistic, so a load modulation earns its gain by
+what it does to the slider alone.
 
 The baseline an effect's gain is judged against, and that its extension
 extends, is read through the training part's linear trend in level when
