@@ -30,7 +30,7 @@ from lieng.diagnose.goodness import RIG, mean_above_zero, onset_ringing, rig_mod
 from lieng.diagnose.signals import lowpass, y_on_motion
 from lieng.diagnose.extend import (METRIC, Judge, candidates, folds, gain_folds, level_trend, refine, subset,
                                    unconfirmed, window)
-from lieng.diagnose.read import Record, check_fn, read_record, record_from_arrays, record_from_trc_deck
+from lieng.diagnose.read import Record, check_fn, noise_level, read_record, record_from_arrays, record_from_trc_deck
 from lieng.diagnose.segment import (REVERSING_SHARE, Prepared, crop, drive_from_force, estimate_fn, find_cycles,
                                     force_sides, head, prepare, reversal_ramp, slip_seconds, stick_ratios,
                                     stick_slip_span)
@@ -438,6 +438,15 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             if fd2 is not None:
                 fd, fse = fd2, fse2
         dur = slip_seconds(pr, c0)
+        if dur is not None and c0.light * pr.dt >= dur:
+            # the slips were found only through a window as long as they last (:func:`.segment._light`, on a
+            # noisy record): their duration, and their arcs, are the window's as much as theirs (the blind
+            # edge-case test's records under noise of 30-50 % of the drop read fn 30-50 % off, a Coulomb
+            # slider's 120 % off)
+            raise LiengInputError(f"{rec.source}: white noise of {100 * noise_level(pr.x) / c0.amplitude(pr.x):.0f} "
+                                  f"% of the drop: the slips are found only through a window of "
+                                  f"{c0.light * pr.dt:.3g} s, as long as they last ({dur:.3g} s), and cannot fix "
+                                  f"the natural frequency: give --fn (Hz)")
         f0 = fd if fd is not None else (0.5 / dur if dur is not None else None)
         fcal = None
         # a slip lasts half a natural period or longer (friction falling with speed lengthens it): when

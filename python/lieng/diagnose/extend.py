@@ -97,7 +97,7 @@ def subset(c: Cycles, sel) -> Cycles:
     if k.size:
         nxt &= np.r_[np.diff(k) == 1, False]
     return Cycles(peak_i=c.peak_i[k], trough_i=c.trough_i[k], stroke=c.stroke[k], next_ok=nxt, v=c.v, a=c.a,
-                  win=c.win)
+                  win=c.win, light=c.light)
 
 
 

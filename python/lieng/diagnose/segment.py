@@ -72,6 +72,9 @@ class Cycles:
     v: np.ndarray
     a: np.ndarray
     win: int
+    #: the widest window (samples) a noisy stroke's slips were found through (:func:`_light`), 0 where no
+    #: stroke was noisy enough to widen the light one
+    light: int = 0
 
     @property
     def n(self) -> int:
@@ -760,7 +763,7 @@ def _light(x, dt, fn, win: int, noise: float):
     xl = smooth(x, dt, 1.0, 0, win=win)
     span = float(np.subtract(*np.percentile(xl, [98, 2])))
     if not 8 * noise > 0.5 * span:
-        return xl, noise
+        return xl, noise, win
     if fn is not None:
         wmax = max(int(NOISY_WINDOW / fn / dt) | 1, 7)
     else:
@@ -781,7 +784,7 @@ def _light(x, dt, fn, win: int, noise: float):
         xw = smooth(x, dt, 1.0, 0, win=w)
         span = float(np.subtract(*np.percentile(xw, [98, 2])))
         best = max(best, (span / _sg_gain(w), w, xw), key=lambda b: b[0])
-    return xw, noise * _sg_gain(w)
+    return xw, noise * _sg_gain(w), w
 
 
 _RAMP = True
@@ -854,11 +857,13 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True, retry: bool 
     dt = p.dt
     noise = noise_level(p.x)
     base_win = 5 if fn is None or 0.25 / fn / dt < 9 else max(5, int(0.08 / fn / dt) | 1)
-    light, noises = [], []
+    light, noises, wide = [], [], 0
     for sl in p.stroke_slices():
-        xl, nl = _light(p.x[sl], dt, fn, base_win, noise)
+        xl, nl, w = _light(p.x[sl], dt, fn, base_win, noise)
         light.append(xl)
         noises.append(nl)
+        if w > base_win:
+            wide = max(wide, w)
     peaks, troughs, strk, nxt = [], [], [], []
     vs, acc = [], []
     win = None
@@ -894,7 +899,7 @@ def find_cycles(p: Prepared, fn: float | None, speeds: bool = True, retry: bool 
     c = Cycles(peak_i=np.asarray(peaks, int), trough_i=np.asarray(troughs, int), stroke=np.asarray(strk, int),
                next_ok=np.asarray(nxt, bool), v=np.concatenate(vs) if speeds else np.empty(0),
                a=np.concatenate(acc) if speeds else np.empty(0),
-               win=win if win is not None else 7)
+               win=win if win is not None else 7, light=wide)
     return c
 
 
