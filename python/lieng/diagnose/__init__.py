@@ -443,8 +443,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             # noisy record): their duration, and their arcs, are the window's as much as theirs (the blind
             # edge-case test's records under noise of 30-50 % of the drop read fn 30-50 % off, a Coulomb
             # slider's 120 % off)
-            raise LiengInputError(f"{rec.source}: white noise of {100 * noise_level(pr.x) / c0.amplitude(pr.x):.0f} "
-                                  f"% of the drop: the slips are found only through a window of "
+            amp = c0.amplitude(pr.x)
+            share = f"white noise of {100 * noise_level(pr.x) / amp:.0f} % of the drop" if amp > 0 else "white noise"
+            raise LiengInputError(f"{rec.source}: {share}: the slips are found only through a window of "
                                   f"{c0.light * pr.dt:.3g} s, as long as they last ({dur:.3g} s), and cannot fix "
                                   f"the natural frequency: give --fn (Hz)")
         f0 = fd if fd is not None else (0.5 / dur if dur is not None else None)
