@@ -1151,3 +1151,33 @@ def test_a_one_letter_name_is_read_by_convention_only_in_its_roles_unit(tmp_path
     assert _column_role("W", "N")[0] == "N" and _column_role("s", "mm")[0] == "position"
     assert _column_role("w", "rad/s")[0] is None and _column_role("u", "V")[0] is None
     assert _column_role("s", "s")[0] == "t"
+
+
+def test_a_loggers_runs_side_by_side_are_read_one_at_a_time(tmp_path):
+    """A teaching lab's logger exports several runs side by side, each
+    column tagged with its run (PASCO Capstone's ``Time (s) Run #1``,
+    Vernier Logger Pro's and Graphical Analysis' ``Run 1: Time (s)`` and
+    ``Latest: Force (N)``), the shorter run's cells left blank.  Without
+    ``--run`` such a file is refused in one line that names its runs (it
+    had read "rows miss a value"); with ``--run`` the run chosen is read as
+    the same run alone in its own file."""
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    short = _read(tmp_path, "short.csv", "t [s],F [N]\n" + _rows(lambda a, b: f"{a},{b}\n", 120))
+    rows = "".join(f"{T[i]},{F[i]}," + (f"{T[i]},{F[i]}" if i < 120 else ",") + "\n" for i in range(200))
+    capstone = tmp_path / "capstone.csv"
+    capstone.write_text("Time (s) Run #1,Force (N) Run #1,Time (s) Run #2,Force (N) Run #2\n" + rows)
+    vernier = tmp_path / "vernier.txt"
+    vernier.write_text("Latest: Time (s)\tLatest: Force (N)\tRun 1: Time (s)\tRun 1: Force (N)\n" +
+                       rows.replace(",", "\t"))
+    for p, labels in ((capstone, r"run 1, run 2"), (vernier, r"latest, run 1")):
+        with pytest.raises(LiengInputError, match=rf"2 runs side by side \({labels}\): choose one with --run"):
+            read_record(p, v0=1.0, stiffness=K)
+    for p, run, want in ((capstone, 1, ref), (capstone, "Run #2", short), (vernier, "latest", ref),
+                         (vernier, "1", short)):
+        r = read_record(p, v0=1.0, stiffness=K, run=run)
+        assert r.t.size == want.t.size, (p.name, run)
+        np.testing.assert_allclose(r.x, want.x, rtol=1e-12, atol=0)
+    with pytest.raises(LiengInputError, match=r"--run 3: not among the runs of .* \(run 1, run 2\)"):
+        read_record(capstone, v0=1.0, stiffness=K, run=3)
+    with pytest.raises(LiengInputError, match=r"--run 2: .* holds no such run"):
+        read_record(tmp_path / "plain.csv", v0=1.0, stiffness=K, run=2)

@@ -13,7 +13,7 @@ from lieng.cli.common import _is_table
 
 
 def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None, progress=None, rate=None,
-                     highpass=None, names=None, normal_load=None):
+                     highpass=None, names=None, normal_load=None, run=None):
     """Read one record (a table, or a TRC deck whose OMNH gives fn) and
     diagnose it: what ``lieng diagnose RECORD`` computes (also a task of
     ``diagnose --batch``).  Returns the :class:`lieng.diagnose.Diagnosis`."""
@@ -23,9 +23,9 @@ def _diagnose_record(data, fn=None, v0=None, stiffness=None, fn_uncertainty=None
 
     if names is not None or _is_table(data):
         rec = read_record(data, v0=v0, stiffness=stiffness, rate=rate, highpass=highpass, names=names,
-                          normal_load=normal_load)
+                          normal_load=normal_load, run=run)
     else:                                   # a thesis-style TRC deck: OMNH gives fn
-        for opt, val in (("--highpass", highpass), ("--normal-load", normal_load)):
+        for opt, val in (("--highpass", highpass), ("--normal-load", normal_load), ("--run", run)):
             if val is not None:
                 raise LiengInputError(f"{opt}: applies to a table, not to a TRC deck ({data})")
         try:
@@ -76,7 +76,7 @@ def _diagnose(args) -> int:
             print(f"\rcalibrating against the baseline: replicate {k}/{n}", end="" if k < n else "\n",
                   file=sys.stderr, flush=True)
     d = _diagnose_record(args.data, args.fn, args.v0, args.stiffness, args.fn_uncertainty, progress, args.rate,
-                         args.highpass, args.names, args.normal_load)
+                         args.highpass, args.names, args.normal_load, args.run)
     names = _write_diagnosis(d, args.outdir, args.force, str(args.data), not args.no_plots)
     if args.json:
         print(dumps_json(d.to_json(), indent=2))
@@ -136,7 +136,7 @@ def _diagnose_batch(args) -> int:
     recs = _batch_records(args.batch)
     show = sys.stderr.isatty() and not args.quiet
     tasks = [(str(r), args.fn, args.v0, args.stiffness, args.fn_uncertainty, None, args.rate, args.highpass,
-              args.names, args.normal_load)
+              args.names, args.normal_load, args.run)
              for r in recs]
     rows, lines, errors = [None] * len(recs), [None] * len(recs), []
     with staged_outdir(args.outdir, args.force, keep=[r.stem for r in recs]) as tmp:

@@ -182,6 +182,8 @@ def build_parser() -> argparse.ArgumentParser:
                          "'t [s],F [N],N [N]': they replace the file's header (a data-acquisition program's "
                          "'Dev1/ai0', 'CH1') or head a file that has none; a .mat or .npz file's one matrix is "
                          "read column by column under them")
+    dg.add_argument("--run", metavar="N", help="the run to read from a logger's export of several runs side by "
+                    "side (PASCO Capstone's 'Time (s) Run #2', Vernier's 'Run 2: Time (s)'): 2, or 'latest'")
     dg.add_argument("--stiffness", type=_quantity, metavar="N_M", help="tangential stiffness (N/m) of a force "
                     "record (a torque record's: N·m per its angle unit, per rad when it has no angle column), or "
                     "with its unit, '2.5 N/mm', '0.05 N·m/rad'; estimated from the sticks when not given")

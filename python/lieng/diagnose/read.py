@@ -843,7 +843,7 @@ def _drive_from_position(pos, dt, notes):
 
 
 def read_record(path, v0: float | None = None, stiffness: float | None = None, rate: float | None = None,
-                highpass: float | None = None, names=None, normal_load=None) -> Record:
+                highpass: float | None = None, names=None, normal_load=None, run=None) -> Record:
     """Read a displacement or force record (see the module docstring).
 
     Parameters
@@ -878,6 +878,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         COF) without a normal-force column (a dead weight's): the friction
         force is mu times it.  Refused beside a normal-force column; said
         and not used on a record of a force or an extension.
+    run : str or int, optional
+        The run to read from a logger's export of several runs side by
+        side (PASCO Capstone's ``Time (s) Run #2``, Vernier's ``Run 2: Time
+        (s)``): ``2`` or ``"latest"`` (:func:`lieng.io.table.read_table`).
 
     Returns
     -------
@@ -894,7 +898,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                      missing="drop", unused=lambda name, unit: _kind(name, unit) is None and
                      not _maybe_position(name, unit) and not (unit.strip() and _unit_key(unit) in _FORCE_ONLY),
                      sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular"),
-                     names=names)
+                     names=names, run=run)
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
     cols, units = {}, {}
     for name, role, unit in roles:

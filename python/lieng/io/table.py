@@ -609,7 +609,48 @@ def _track_names(rows, k0: int, names: list, sep) -> list | None:
     return out if len(set(out)) == len(out) else None
 
 
-def read_table(path, expect: str, missing: str = "error", unused=None, sparse=None, names=None) -> Table:
+#: a header cell tagged with the run it belongs to: a logger's export of several runs side by side (PASCO
+#: Capstone's "Time (s) Run #1", Vernier Logger Pro's and Graphical Analysis' "Run 1: Time (s)", "Latest: ...")
+_RUN_PREFIX = re.compile(r"^\s*(run\s*#?\s*\d+|latest)\s*:\s*(.+)$", re.IGNORECASE)
+_RUN_SUFFIX = re.compile(r"^(.+?)\s+(run\s*#?\s*\d+)\s*$", re.IGNORECASE)
+
+
+def _run_label(text: str) -> str:
+    """'Run #1', 'run 1', 'RUN1', '1' -> 'run 1'; 'Latest' -> 'latest'."""
+    t = text.strip().lower()
+    m = re.fullmatch(r"(?:run\s*#?\s*)?(\d+)", t)
+    return f"run {int(m.group(1))}" if m else t
+
+
+def _run_columns(head, least: int = 2):
+    """The header's cells by run, {label: [(column, the cell less its tag)]}, when every named cell carries a
+    run's tag and there are ``least`` runs or more; None otherwise (one run's tags are left as they were
+    read)."""
+    runs, named = {}, 0
+    for j, h in enumerate(head):
+        if not h.strip():
+            continue
+        named += 1
+        m = _RUN_PREFIX.match(h)
+        if m:
+            runs.setdefault(_run_label(m.group(1)), []).append((j, m.group(2).strip()))
+            continue
+        m = _RUN_SUFFIX.match(h)
+        if not m:
+            return None
+        runs.setdefault(_run_label(m.group(2)), []).append((j, m.group(1).strip()))
+    return runs if len(runs) >= least and sum(len(v) for v in runs.values()) == named else None
+
+
+def _pick_cells(row: str, sep, cols) -> str:
+    """A data row cut to the columns ``cols`` (blank when they are all empty: a shorter run has ended)."""
+    cells = _cells(row, sep)
+    picked = [cells[j] if j < len(cells) else "" for j in cols]
+    return sep.join(picked) if any(_unquote(c).strip() for c in picked) else ""
+
+
+def read_table(path, expect: str, missing: str = "error", unused=None, sparse=None, names=None,
+               run=None) -> Table:
     """Read a delimited numeric table with a header row.
 
     Parameters
@@ -647,6 +688,11 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         program's ``Dev1/ai0``), or head a file that has none (its first
         row is then data); a MATLAB or NumPy file's one matrix is read
         column by column under them.
+    run : str or int, optional
+        The run to read from a logger's export of several runs side by
+        side, each column's name tagged with its run (``"Time (s) Run #2"``,
+        ``"Run 2: Time (s)"``, ``"Latest: Force (N)"``): ``2``, ``"Run #2"``
+        or ``"latest"``.  Such a file is refused without it, naming its runs.
 
     Returns
     -------
@@ -733,6 +779,29 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     head = [_unquote(h) for h in head]
     while len(head) > 1 and not head[-1]:
         head.pop()                        # a separator at the end of every line
+    byrun = _run_columns(head) if given is None and sep else None
+    if byrun is None and run is not None:
+        one = _run_columns(head, 1) if given is None else None
+        if one is None or _run_label(str(run)) not in one:
+            raise LiengInputError(f"--run {run}: {path}'s header holds no such run (its columns are not tagged "
+                                  f"'Run #{run}', 'Run {run}:')" if one is None else
+                                  f"--run {run}: not among the runs of {path} ({', '.join(one)})")
+    if byrun is not None:
+        labels = ", ".join(byrun)
+        if run is None:
+            num = next((lb.split()[1] for lb in byrun if lb.startswith("run ")), "latest")
+            raise LiengInputError(f"{path}: header: {len(byrun)} runs side by side ({labels}): choose one with "
+                                  f"--run (e.g. --run {num})")
+        want = _run_label(str(run))
+        if want not in byrun:
+            raise LiengInputError(f"--run {run}: not among the runs of {path} ({labels})")
+        cols = [j for j, _ in byrun[want]]
+        head = [h for _, h in byrun[want]]
+        # the chosen run's cells alone, from the row after the header on (a shorter run's rows end blank)
+        rows = rows[:k0 + 1] + [_pick_cells(r, sep, cols) if r.strip() and not _is_comment(r) else r
+                                for r in rows[k0 + 1:]]
+        k1 = next((k for k in range(k0 + 1, len(rows)) if rows[k].strip() and not _is_comment(rows[k])), None)
+        first = None if k1 is None else rows[k1]
     names, units = [], []
     for h in head:
         nm, un = _name_unit(h)
