@@ -1181,3 +1181,8 @@ def test_a_loggers_runs_side_by_side_are_read_one_at_a_time(tmp_path):
         read_record(capstone, v0=1.0, stiffness=K, run=3)
     with pytest.raises(LiengInputError, match=r"--run 2: .* holds no such run"):
         read_record(tmp_path / "plain.csv", v0=1.0, stiffness=K, run=2)
+    quoted = tmp_path / "quoted.csv"
+    quoted.write_text('"Time (s) Run #1","Force (N) Run #1","Time (s) Run #2","Force (N) Run #2"\n' +
+                      "".join(f'"{T[i]}","{1000 * F[i]:,.3f}","{T[i]}","{F[i]}"\n' for i in range(200)))
+    r = read_record(quoted, v0=1.0, stiffness=K * 1000, run=1)     # (forces written x 1000, grouped: "1,234.5")
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-6, atol=0)

@@ -753,13 +753,13 @@ def _light(x, dt, fn, win: int, noise: float):
     sensor sampled fast, whose slips the thresholds would not see), the
     window is doubled, at most to :data:`NOISY_WINDOW` natural periods
     (without fn, a sixteenth of the stroke and a quarter of its strongest
-    period), until 8 times the noise it lets
-    through is within half the swing read through it (the noise widens the
-    swing read sample by sample: white noise of 40 % of the drop reads a
-    swing of twice the drop); where no window up to that does, the one whose
-    swing stands highest above the noise it lets through (past the slips'
-    own time scale a wider window smooths the swing away faster than the
-    noise).  The thresholds then read that window's noise."""
+    period), until 8 times the noise it lets through is within half the
+    swing read through it (the noise widens the swing read sample by
+    sample: white noise of 40 % of the drop reads a swing of twice the
+    drop); where no window up to that does, the one whose swing stands
+    highest above the noise it lets through (past the slips' own time scale
+    a wider window smooths the swing away faster than the noise).  The
+    thresholds then read that window's noise; returned with the window."""
     xl = smooth(x, dt, 1.0, 0, win=win)
     span = float(np.subtract(*np.percentile(xl, [98, 2])))
     if not 8 * noise > 0.5 * span:

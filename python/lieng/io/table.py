@@ -646,6 +646,8 @@ def _pick_cells(row: str, sep, cols) -> str:
     """A data row cut to the columns ``cols`` (blank when they are all empty: a shorter run has ended)."""
     cells = _cells(row, sep)
     picked = [cells[j] if j < len(cells) else "" for j in cols]
+    # (a cell the csv reader unquoted is quoted again where it holds the separator: "12,345.6")
+    picked = ['"' + c.replace('"', '""') + '"' if sep in c or '"' in c else c for c in picked]
     return sep.join(picked) if any(_unquote(c).strip() for c in picked) else ""
 
 
@@ -709,6 +711,9 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         raise LiengInputError(f"--names: {', '.join(map(str, names))!r}: a name for each column, comma-separated "
                               f"('t [s],F [N],N [N]')")
     if str(path).lower().endswith(ARRAY_FILES):
+        if run is not None:
+            raise LiengInputError(f"--run {run}: applies to a table's columns tagged with their runs, not to "
+                                  f"{path}")
         return _read_arrays(path, expect, given)
     if str(path).lower().endswith(WORKBOOKS):
         text, encoding = _workbook_text(path), "xlsx"
