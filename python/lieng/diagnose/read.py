@@ -272,7 +272,7 @@ _SLACK_WORDS = {"tail", "back", "holdback", "slack", "input", "incoming", "entry
 _WEAK_NAMES = {"w": _FORCE, "s": _LENGTH, "d": _LENGTH, "u": _LENGTH}
 
 
-def _weak_unit_misfits(key: str, u: str, unit: str) -> bool:
+def _weak_unit_misfits(key: str, u: str) -> bool:
     """Whether a one-letter conventional name's unit is not of its role's dimension (``s`` in seconds is the
     time, which the unit decides as before)."""
     return u not in _WEAK_NAMES[key] and not (key == "s" and u in _TIME)
@@ -306,7 +306,7 @@ def _role(name: str, unit: str = ""):
         words = words - {"squeeze"}          # a squeeze film's thickness is the lubricant's, not a load
     if {"load", "point"} <= words or "lp" in words:
         words = (words - {"load", "point", "lp"}) | {"position"}     # rock mechanics: the load point is the drive
-    if key in _WEAK_NAMES and u and _weak_unit_misfits(key, u, unit):
+    if key in _WEAK_NAMES and u and _weak_unit_misfits(key, u):
         return None                      # "w [rad/s]" is an angular speed, "u [V]" a raw channel: not W or u
     named = [role for role, alts in _NAMES.items() if key in alts] + \
             [role for role, alts in _WORDS if words & set(alts)]
@@ -1026,11 +1026,9 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         bare = [n for n, role, u in roles if role is None and n.strip() and not u.strip() and n not in taken
                 and not _words(n) & _NOT_A_QUANTITY]
         if len(forces) == 1 and not bare:
-            v = tab.columns[forces[0][0]]
-            lo, hi, mid = np.nanpercentile(v, [1, 99, 50])
-            forces = forces if hi - lo > LONE_FORCE_SWING * abs(mid) else []
-        if len(forces) == 1 and not bare:
             n, u = forces[0]
+            lo, hi, mid = np.nanpercentile(tab.columns[n], [1, 99, 50])
+        if len(forces) == 1 and not bare and hi - lo > LONE_FORCE_SWING * abs(mid):
             cols["F"], units["F"] = (n, tab.columns[n]), u
             lone_force = (f"column {n} ({u}), the record's one force whose name lieng does not know, read as the "
                           f"friction force (--names sets each column's role)")

@@ -784,22 +784,19 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
     head = [_unquote(h) for h in head]
     while len(head) > 1 and not head[-1]:
         head.pop()                        # a separator at the end of every line
-    byrun = _run_columns(head) if given is None and sep else None
-    if byrun is None and run is not None:
-        one = _run_columns(head, 1) if given is None else None
-        if one is None or _run_label(str(run)) not in one:
-            raise LiengInputError(f"--run {run}: {path}'s header holds no such run (its columns are not tagged "
-                                  f"'Run #{run}', 'Run {run}:')" if one is None else
-                                  f"--run {run}: not among the runs of {path} ({', '.join(one)})")
-    if byrun is not None:
-        labels = ", ".join(byrun)
-        if run is None:
-            num = next((lb.split()[1] for lb in byrun if lb.startswith("run ")), "latest")
-            raise LiengInputError(f"{path}: header: {len(byrun)} runs side by side ({labels}): choose one with "
-                                  f"--run (e.g. --run {num})")
-        want = _run_label(str(run))
-        if want not in byrun:
-            raise LiengInputError(f"--run {run}: not among the runs of {path} ({labels})")
+    byrun = _run_columns(head, 1) if given is None else None
+    several = byrun is not None and len(byrun) > 1 and bool(sep)     # (runs side by side need a separator)
+    want = None if run is None else _run_label(str(run))
+    if run is None and several:
+        num = next((lb.split()[1] for lb in byrun if lb.startswith("run ")), "latest")
+        raise LiengInputError(f"{path}: header: {len(byrun)} runs side by side ({', '.join(byrun)}): choose one "
+                              f"with --run (e.g. --run {num})")
+    if run is not None and byrun is None:
+        raise LiengInputError(f"--run {run}: {path}'s header holds no such run (its columns are not tagged "
+                              f"'Run #{run}', 'Run {run}:')")
+    if run is not None and want not in byrun:
+        raise LiengInputError(f"--run {run}: not among the runs of {path} ({', '.join(byrun)})")
+    if run is not None and several:
         cols = [j for j, _ in byrun[want]]
         head = [h for _, h in byrun[want]]
         # the chosen run's cells alone, from the row after the header on (a shorter run's rows end blank)
