@@ -518,6 +518,27 @@ def test_a_normal_channel_in_a_length_is_the_normal_reading(tmp_path):
     np.testing.assert_allclose(r.y, 2.5 + 0.1 * F, rtol=1e-9)
 
 
+@pytest.mark.parametrize("head, scale", [("Apply pressure [kPa]", 1e3), ("Anpressdruck [bar]", 1e5),
+                                         ("Pression (MPa)", 1e6), ("Cylinder pressure", 1.0)])
+def test_a_pressure_on_the_contact_is_the_normal_reading(tmp_path, head, scale):
+    """A pressure column ("Apply pressure [kPa]": a pneumatic piston's, a
+    wet-clutch bench's; ``Anpressdruck``, ``Pression``) with no column named
+    for the load is the normal load's reading, and said (a blind generator's
+    records had it left unread: "not read: column Apply pressure").  A
+    column named for the load comes first, and two pressures are left
+    unread."""
+    p = tmp_path / "r.csv"
+    p.write_text(f"Time [s],F [N],{head},Oil temp [degC]\n" + _rows(lambda a, b: f"{a},{b},{700 + 5 * b},60\n"))
+    r = read_record(p, v0=1.0, stiffness=K)
+    assert r.y is not None and r.y_is_force
+    np.testing.assert_allclose(r.y, (700 + 5 * F) * scale, rtol=1e-9)
+    assert any("read as the normal load's reading: a pressure" in n for n in r.notes)
+    p.write_text("Time [s],F [N],Air pressure [bar],Normal force [N]\n" + _rows(lambda a, b: f"{a},{b},6.0,{20 + b}\n"))
+    np.testing.assert_allclose(read_record(p, v0=1.0, stiffness=K).y, 20 + F, rtol=1e-9)
+    p.write_text("Time [s],F [N],Pressure A [kPa],Pressure B [kPa]\n" + _rows(lambda a, b: f"{a},{b},6.0,{20 + b}\n"))
+    assert read_record(p, v0=1.0, stiffness=K).y is None
+
+
 @pytest.mark.parametrize("name", ["v_drive", "v_stage [mm/s]", "Stage [mm/s]"])
 def test_a_drive_velocity_named_for_the_stage_is_the_drive(tmp_path, name):
     """A column named for the stage or the drive whose unit (or ``v``) says

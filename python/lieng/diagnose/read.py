@@ -267,6 +267,38 @@ def _german_compounds(words: set) -> set:
 _SLACK_WORDS = {"tail", "back", "holdback", "slack", "input", "incoming", "entry", "t1", "pre", "hold"}
 
 
+#: the words of a pressure column ("Apply pressure", "Anpressdruck", "Pression"): a pressure on a piston, a
+#: bellows or a pad is the contact's normal load over an area
+_PRESSURE_WORDS = {"pressure", "druck", "pression", "presion", "pressione", "pressao", "cisnienie"}
+
+
+def _is_pressure(name: str, unit: str = "") -> bool:
+    """Whether a column is a pressure by its name (:data:`_PRESSURE_WORDS`,
+    a German compound ending in ``druck``) and its unit (a pressure's, or
+    none)."""
+    w = _words(name.strip().lower().replace(" ", "_").replace("-", "_"))
+    w |= {"druck" for x in w if x.endswith("druck")}
+    return bool(w & _PRESSURE_WORDS) and (not unit.strip() or _is_stress(unit))
+
+
+def _pressure_as_load(roles, tab, cols, units) -> str | None:
+    """With no normal channel named, a record's one pressure column (a
+    pneumatic or hydraulic apply pressure, in a pressure's unit or none) is
+    read as the normal load's reading, and said; a column named for the
+    load always comes first, and two pressures are left unread (which one
+    presses?)."""
+    if {"N", "y"} & cols.keys():
+        return None
+    taken = {c[0] for c in cols.values()}
+    cand = [(n, u) for n, role, u in roles if role is None and n not in taken and _is_pressure(n, u)]
+    if len(cand) != 1:
+        return None
+    n, u = cand[0]
+    cols["N"], units["N"] = (n, tab.columns[n]), u
+    return (f"column {n}{f' ({u})' if u.strip() else ''} read as the normal load's reading: a pressure on the "
+            f"contact (an apply piston's, a bellows')")
+
+
 #: one-letter names read by convention (W the load, s, d, u the travel): their unit must be of that role's
 #: dimension, or the column has no role
 _WEAK_NAMES = {"w": _FORCE, "s": _LENGTH, "d": _LENGTH, "u": _LENGTH}
@@ -896,8 +928,10 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     # (a column of no role, a temperature or a comment, is not read: neither a word nor a gap in it matters)
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
                      missing="drop", unused=lambda name, unit: _kind(name, unit) is None and
-                     not _maybe_position(name, unit) and not (unit.strip() and _unit_key(unit) in _FORCE_ONLY),
-                     sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular"),
+                     not _maybe_position(name, unit) and not (unit.strip() and _unit_key(unit) in _FORCE_ONLY)
+                     and not _is_pressure(name, unit),
+                     sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular")
+                     or _is_pressure(name, unit),
                      names=names, run=run)
     roles = [(name, *_column_role(name, unit)) for name, unit in zip(tab.names, tab.units)]   # (name, role, unit)
     cols, units = {}, {}
@@ -917,6 +951,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         pair_note = (f"column {cols['N'][0]} beside the friction force {(cols.get('F') or cols['x'])[0]}: read as "
                      f"the normal force")
     pull_note = None
+    press_note = _pressure_as_load(roles, tab, cols, units)
     if "N" in cols and not {"F", "mu"} & cols.keys() and cols["N"][0].strip().lower() == "load" and \
             ("x" not in cols or _one_way(cols["x"][1])):
         # a universal testing machine's friction test (ASTM D1894, ISO 8295: a sled pulled over a plane by the
@@ -1115,7 +1150,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, pull_note, notes_pair, slider_note, mu_note, load_note, lone_force,
+    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, press_note, pull_note, notes_pair, slider_note, mu_note, load_note, lone_force,
                          drive_note,
                          serial_note, runs_note, dup_note, stamps_note) if m]
     if dated:
