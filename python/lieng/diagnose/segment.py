@@ -746,6 +746,12 @@ def _sg_gain(w: int) -> float:
 NOISY_WINDOW = 1.0
 
 
+def _swing(v) -> float:
+    """A trace's swing: its 98th less its 2nd percentile (a spike or a
+    reversal's overshoot does not set it)."""
+    return float(np.subtract(*np.percentile(v, [98, 2])))
+
+
 def _light(x, dt, fn, win: int, noise: float):
     """A stroke's trace lightly smoothed for finding its extrema (``win``
     samples), and the noise the cycle finder's thresholds are read against.
@@ -761,7 +767,7 @@ def _light(x, dt, fn, win: int, noise: float):
     a wider window smooths the swing away faster than the noise).  The
     thresholds then read that window's noise; returned with the window."""
     xl = smooth(x, dt, 1.0, 0, win=win)
-    span = float(np.subtract(*np.percentile(xl, [98, 2])))
+    span = _swing(xl)
     if not 8 * noise > 0.5 * span:
         return xl, noise, win
     if fn is not None:
@@ -782,7 +788,7 @@ def _light(x, dt, fn, win: int, noise: float):
             break
         w = 2 * w + 1
         xw = smooth(x, dt, 1.0, 0, win=w)
-        span = float(np.subtract(*np.percentile(xw, [98, 2])))
+        span = _swing(xw)
         best = max(best, (span / _sg_gain(w), w, xw), key=lambda b: b[0])
     return xw, noise * _sg_gain(w), w
 
@@ -811,12 +817,12 @@ def _stroke_slips(xl, noise: float, share: float) -> list:
     # its level: a ramp as tall as two static limits, which no slip is)
     head_end = int(np.argmax(xl >= np.median(xl))) if _RAMP else 0
     body = xl[head_end:] if 2 * (xl.size - head_end) >= xl.size else xl
-    span = float(np.subtract(*np.percentile(body, [98, 2])))
+    span = _swing(body)
     if not span > 1e-9 * float(np.max(np.abs(xl))):
         return out                      # a flat stroke (within rounding): no cycle in it
     # (and at least a twentieth of the whole stroke's, reload included: a steady stroke's wiggles are no
     # stick-slip)
-    h0 = max(share * span, 8 * noise, 0.05 * float(np.subtract(*np.percentile(xl, [98, 2]))))
+    h0 = max(share * span, 8 * noise, 0.05 * _swing(xl))
     ix, kd = _zigzag_fast(xl, h0)
     if ix.size >= 4:
         sw = np.abs(np.diff(xl[ix]))
