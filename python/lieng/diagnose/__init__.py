@@ -45,6 +45,9 @@ FN_UNCERTAINTY = 0.05
 #: the true fn, 53 within 15 %, 49 within 10 %, 37 within 5 %; twin branches, which shorten the
 #: slips, read high)
 FN_UNCERTAINTY_DURATION = 0.15
+#: the widest relative uncertainty fn is read with from the slips (the replicates' fn is drawn within it and
+#: stays > 0); where the noise leaves the slips' falls open beyond it, the record is refused, asking for --fn
+FN_UNCERTAINTY_MAX = 0.5
 #: a --fn further than this from the slips' estimate is questioned
 FN_CHECK = 0.20
 #: slips whose own frequency (their arcs', or the fn at which the baseline's last as long) is this far off
@@ -363,8 +366,9 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
     """
     if fn is not None and not (math.isfinite(fn) and fn > 0):
         raise LiengInputError(f"--fn {fn}: the natural frequency must be a positive number (Hz)")
-    if not (math.isfinite(fn_uncertainty) and 0.001 <= fn_uncertainty <= 0.5):
-        raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: a relative uncertainty between 0.001 and 0.5")
+    if not (math.isfinite(fn_uncertainty) and 0.001 <= fn_uncertainty <= FN_UNCERTAINTY_MAX):
+        raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: a relative uncertainty between 0.001 and "
+                              f"{FN_UNCERTAINTY_MAX:g}")
     if fn is None and fn_uncertainty != FN_UNCERTAINTY:
         raise LiengInputError(f"--fn-uncertainty {fn_uncertainty}: it is the uncertainty of a given --fn; give --fn")
     # a speed without a sign: only --v0 (a reciprocating rig without its stage's position), or a speed readout
@@ -437,7 +441,7 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             fd2, fse2, _ = estimate_fn(pr, c1, fd) if c1.n >= 3 else (None, None, 0)
             if fd2 is not None:
                 fd, fse = fd2, fse2
-        dur = slip_seconds(pr, c0)
+        dur, u_read = slip_seconds(pr, c0, spread=True)
         if dur is not None and c0.light * pr.dt >= dur:
             # the slips were found only through a window as long as they last (:func:`.segment._light`, on a
             # noisy record): their duration, and their arcs, are the window's as much as theirs (the blind
@@ -448,6 +452,14 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             raise LiengInputError(f"{rec.source}: {share}: the slips are found only through a window of "
                                   f"{c0.light * pr.dt:.3g} s, as long as they last ({dur:.3g} s), and cannot fix "
                                   f"the natural frequency: give --fn (Hz)")
+        if dur is not None and FN_UNCERTAINTY_DURATION + u_read > FN_UNCERTAINTY_MAX:
+            # the noise leaves the slips' falls open by more than the widest uncertainty fn is read with
+            # (:func:`.segment.slip_durations`: the two readings of each crossing, nearest and farthest from the
+            # fall's middle, half a duration apart or more): an fn "known to +- 50 %" is none
+            amp = c0.amplitude(pr.x)
+            share = f"white noise of {100 * noise_level(pr.x) / amp:.0f} % of the drop" if amp > 0 else "white noise"
+            raise LiengInputError(f"{rec.source}: {share}: read through it, the slips' falls last {dur:.3g} s "
+                                  f"+- {100 * u_read:.0f} % and cannot fix the natural frequency: give --fn (Hz)")
         f0 = fd if fd is not None else (0.5 / dur if dur is not None else None)
         fcal = None
         # a slip lasts half a natural period or longer (friction falling with speed lengthens it): when
@@ -459,16 +471,21 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
             if fcal is not None:
                 break
         if fcal is not None and fcal * pr.dt < 0.2:
-            fn_used, src, u_fn = fcal, "estimated from the slips' duration", FN_UNCERTAINTY_DURATION
+            # the law's shape (FN_UNCERTAINTY_DURATION) and how far the record's noise leaves the slips' falls
+            # open (:func:`.segment.slip_durations`: 0 on a clean record; at most FN_UNCERTAINTY_MAX, above)
+            u_fn = FN_UNCERTAINTY_DURATION + u_read
+            fn_used, src = fcal, "estimated from the slips' duration"
             who = ("baseline's slips, their friction following the recorded normal force," if loaded else
                    "baseline's slips")
             notes.append(f"fn estimated from the slips: {fcal:.4g} Hz is the natural frequency at which the "
                          f"{who} last as long as the record's (+- {100 * u_fn:.0f} %"
+                         + (f", of which {100 * u_read:.0f} % the noise leaves their falls open" if u_read >= 0.005
+                            else "")
                          + (f"; their arcs alone say {fd:.4g} Hz" if fd is not None else "") + ")")
         elif fd is not None:
             fn_used, src = fd, "estimated from the slips' arcs"
-            # (at most 50 %, the widest --fn-uncertainty: the replicates' fn is drawn within it and stays > 0)
-            u_fn = min(max(FN_UNCERTAINTY_DURATION, 3 * (fse or 0.0) / fd), 0.5)
+            # (at most FN_UNCERTAINTY_MAX, the widest --fn-uncertainty)
+            u_fn = min(max(FN_UNCERTAINTY_DURATION, 3 * (fse or 0.0) / fd), FN_UNCERTAINTY_MAX)
         else:
             raise LiengInputError(f"{rec.source}: the natural frequency cannot be fixed from the slips "
                                   f"({nsl} usable): give --fn (Hz)")
