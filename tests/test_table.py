@@ -539,6 +539,38 @@ def test_a_pressure_on_the_contact_is_the_normal_reading(tmp_path, head, scale):
     assert read_record(p, v0=1.0, stiffness=K).y is None
 
 
+def test_a_six_axis_sensors_export_reads_the_friction_on_the_axis_the_rig_slides_along(tmp_path):
+    """An ATI six-axis force/torque sensor's export: a status word in hex
+    ('0x00000000') and two counters ('RDT Sequence', 'F/T Sequence') before
+    Fx, Fy, Fz, Tx, Ty, Tz and the time, the units in the names or in a
+    metadata block above.  It had been refused ("column Time: unit
+    '0.000000'": the first data row, a word in it, taken for a row of
+    units; and 'F/T Sequence' read as a force in the unit 'T Sequence').
+    On a rig that slides along y the friction is Fy, Fx holding crosstalk:
+    the tangential channel that swings the more is read, and said."""
+    rng = np.random.default_rng(1)
+    fx = 0.01 * rng.standard_normal(200)
+    rows = "".join(f"0x00000000,{i + 1},{5000 + 2 * i},{fx[i]:.6f},{F[i]},{-2.0 - 0.1 * F[i]:.6f},0.001,0.002,"
+                   f"0.0003,{T[i]}\n" for i in range(200))
+    named = tmp_path / "ati.csv"
+    named.write_text("Status (hex),RDT Sequence,F/T Sequence,Fx (N),Fy (N),Fz (N),Tx (N-m),Ty (N-m),Tz (N-m),"
+                     "Time (s)\n" + rows)
+    meta = tmp_path / "ati_meta.csv"
+    meta.write_text("Final Calibration Name:,FT65318\nForce Units:,N\nTorque Units:,N-m\nTime Units:,s\n"
+                    "Status (hex),RDT Sequence,F/T Sequence,Fx,Fy,Fz,Tx,Ty,Tz,Time\n" + rows)
+    ref = _read(tmp_path, "plain.csv", PLAIN)
+    for p in (named, meta):
+        r = read_record(p, v0=1.0, stiffness=K)
+        np.testing.assert_allclose(r.x, ref.x, rtol=1e-9)
+        np.testing.assert_allclose(r.y, 2.0 + 0.1 * F, rtol=1e-5)
+        assert any(n.startswith("column Fy read as the friction") for n in r.notes), r.notes
+    # sliding along x, the friction stays Fx
+    named.write_text("Time (s),Fx (N),Fy (N),Fz (N)\n" + "".join(f"{T[i]},{F[i]},{fx[i]:.6f},-2.0\n" for i in range(200)))
+    r = read_record(named, v0=1.0, stiffness=K)
+    np.testing.assert_allclose(r.x, ref.x, rtol=1e-9)
+    assert not any("read as the friction" in n for n in r.notes)
+
+
 @pytest.mark.parametrize("name", ["v_drive", "v_stage [mm/s]", "Stage [mm/s]"])
 def test_a_drive_velocity_named_for_the_stage_is_the_drive(tmp_path, name):
     """A column named for the stage or the drive whose unit (or ``v``) says

@@ -272,6 +272,40 @@ _SLACK_WORDS = {"tail", "back", "holdback", "slack", "input", "incoming", "entry
 _PRESSURE_WORDS = {"pressure", "druck", "pression", "presion", "pressione", "pressao", "cisnienie"}
 
 
+#: a multi-axis force sensor's tangential channels ("Fx", "Fy", "Fx_N", "Force X", "F_y [N]")
+_AXIS = re.compile(r"^\s*f(?:orce)?[\s_]*\(?([xy])\)?(?:_[a-zµ]+)?\s*$", re.IGNORECASE)
+
+
+def _sliding_axis(roles, tab, cols, units) -> str | None:
+    """A multi-axis force sensor's friction (an ATI six-axis cell's ``Fx``
+    and ``Fy`` beside ``Fz``): the tangential channel that swings the more
+    (2nd to 98th percentile), ``Fx`` unless ``Fy`` swings more, said.  A rig
+    that slides along y puts its friction in ``Fy``, and ``Fx`` holds
+    crosstalk and noise (a blind generator's records were read on ``Fx``, a
+    drop a hundred times too small)."""
+    if "F" not in cols:
+        return None
+    m = _AXIS.match(cols["F"][0])
+    if m is None:
+        return None
+    other = "y" if m.group(1).lower() == "x" else "x"
+    cand = [(n, u) for n, role, u in roles if n != cols["F"][0] and (m2 := _AXIS.match(n)) is not None
+            and m2.group(1).lower() == other and n in tab.columns]
+    if len(cand) != 1:
+        return None
+    n, u = cand[0]
+    a, b = np.asarray(cols["F"][1], float), np.asarray(tab.columns[n], float)
+    if not (np.all(np.isfinite(b)) and units["F"].strip().lower() == u.strip().lower()):
+        return None
+    swing = lambda v: float(np.subtract(*np.percentile(v, [98, 2])))
+    if not swing(b) > swing(a):
+        return None
+    note = (f"column {n} read as the friction: it swings {swing(b) / max(swing(a), 1e-300):.3g} times as far as "
+            f"{cols['F'][0]} (a multi-axis sensor's tangential channels: the rig slides along its axis)")
+    cols["F"], units["F"] = (n, b), u
+    return note
+
+
 def _is_pressure(name: str, unit: str = "") -> bool:
     """Whether a column is a pressure by its name (:data:`_PRESSURE_WORDS`,
     a German compound ending in ``druck``) and its unit (a pressure's, or
@@ -326,6 +360,8 @@ def _role(name: str, unit: str = ""):
     words = _german_compounds(_words(key))
     if words & {"strain", "dehnung"}:
         return None                      # a strain ('Tensile strain (Extension)', %): a testing machine's, no role
+    if words & {"sequence", "seq", "counter", "index", "status"}:
+        return None                      # a counter or a status word (an ATI sensor's 'F/T Sequence'): no role
     if "load" in words and words & {"friction", "tangential", "lateral", "shear", "traction"}:
         words = words - {"load"}             # "Tangential load", "Friction load": the friction force
     if {"load", "cell"} <= words:
@@ -929,7 +965,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
     tab = read_table(path, "t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with --stiffness",
                      missing="drop", unused=lambda name, unit: _kind(name, unit) is None and
                      not _maybe_position(name, unit) and not (unit.strip() and _unit_key(unit) in _FORCE_ONLY)
-                     and not _is_pressure(name, unit),
+                     and not _is_pressure(name, unit) and not _AXIS.match(name),
                      sparse=lambda name, unit: _kind(name, unit) in ("position", "v0", "y", "N", "angular")
                      or _is_pressure(name, unit),
                      names=names, run=run)
@@ -952,6 +988,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
                      f"the normal force")
     pull_note = None
     press_note = _pressure_as_load(roles, tab, cols, units)
+    axis_note = _sliding_axis(roles, tab, cols, units)
     if "N" in cols and not {"F", "mu"} & cols.keys() and cols["N"][0].strip().lower() == "load" and \
             ("x" not in cols or _one_way(cols["x"][1])):
         # a universal testing machine's friction test (ASTM D1894, ISO 8295: a sled pulled over a plane by the
@@ -1150,7 +1187,7 @@ def read_record(path, v0: float | None = None, stiffness: float | None = None, r
         what = "repeats" if d[bad[0]] == 0 else "goes back"
         _fail(f"{path}: line {tab.lines[bad[0] + 1]}, column {cols['t'][0]}: time {what} "
               f"({t[bad[0] + 1]:g} after {t[bad[0]]:g}): t must increase")
-    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, press_note, pull_note, notes_pair, slider_note, mu_note, load_note, lone_force,
+    notes = [m for m in (rotary["note"] if rotary else None, *given, pair_note, press_note, axis_note, pull_note, notes_pair, slider_note, mu_note, load_note, lone_force,
                          drive_note,
                          serial_note, runs_note, dup_note, stamps_note) if m]
     if dated:

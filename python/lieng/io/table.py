@@ -143,7 +143,9 @@ def _name_unit(cell: str) -> tuple:
     if m:
         return m.group(1), m.group(2)
     m = _SLASH.match(cell)
-    if m and m.group(2).strip().lower() not in _TIME_WORDS and not _DAQ_CHANNEL.match(m.group(2)):
+    # (not a unit: words after the slash, an ATI sensor's 'F/T Sequence')
+    if m and m.group(2).strip().lower() not in _TIME_WORDS and not _DAQ_CHANNEL.match(m.group(2)) and \
+            not (" " in m.group(2).strip() and m.group(2).strip().lower() not in _UNITS):
         return m.group(1), m.group(2)
     return cell, ""
 
@@ -831,24 +833,24 @@ def read_table(path, expect: str, missing: str = "error", unused=None, sparse=No
         # (a column without a unit may leave its cell empty: a rheometer's "Point No." under "[s]", "[N·m]")
         unitlike = len(cells) == ncol and all(len(c) <= 12 for c in cells) and \
             sum(bool(c.strip()) for c in cells) >= max(1, ncol - 2)
-        if unitlike:
-            try:
-                [_number(c, comma) for c in cells if c.strip()]
-            except ValueError:
-                # (a header's parenthesis that is no unit, Bluehill's "Tensile strain (Extension)", is part of
-                # the name when a row of units follows)
-                odd = [j for j, u in enumerate(units) if u and not _unit_cell(u)]
-                if not any(units) or given is not None or odd:
-                    if odd and given is None:
-                        names = [f"{nm} ({u})" if j in odd else nm for j, (nm, u) in enumerate(zip(names, units))]
-                        units = [""] * len(units)
-                    units = units if any(units) else [c.strip("[]() ") for c in cells]
-                    start = k1 + 1
-                    # Origin's comments row under the units (its first cell often empty): no number in it
-                    k2 = next((k for k in range(start, len(rows)) if rows[k].strip() and not _is_comment(rows[k])),
-                              None)
-                    if k2 is not None and not _data_cells(rows[k2])[1] and _text_row(rows[k2], ncol):
-                        start, comments_row = k2 + 1, k2 + 1
+        # (a unit is no number: a data row whose first cell is a word, an ATI sensor's status '0x00000000', is
+        # no row of units; one number is allowed, a unitless column's '1')
+        nums = sum(1 for c in cells if c.strip() and _is_number_cell(c, comma))
+        if unitlike and nums <= 1 and nums < sum(bool(c.strip()) for c in cells):
+            # (a header's parenthesis that is no unit, Bluehill's "Tensile strain (Extension)", is part of
+            # the name when a row of units follows)
+            odd = [j for j, u in enumerate(units) if u and not _unit_cell(u)]
+            if not any(units) or given is not None or odd:
+                if odd and given is None:
+                    names = [f"{nm} ({u})" if j in odd else nm for j, (nm, u) in enumerate(zip(names, units))]
+                    units = [""] * len(units)
+                units = units if any(units) else [c.strip("[]() ") for c in cells]
+                start = k1 + 1
+                # Origin's comments row under the units (its first cell often empty): no number in it
+                k2 = next((k for k in range(start, len(rows)) if rows[k].strip() and not _is_comment(rows[k])),
+                          None)
+                if k2 is not None and not _data_cells(rows[k2])[1] and _text_row(rows[k2], ncol):
+                    start, comments_row = k2 + 1, k2 + 1
     # a first data row of more values than the header has names: a name left out of the header, and every
     # column after it would be read under its neighbour's name
     k_first = next((k for k in range(start, len(rows)) if rows[k].strip() and not _is_comment(rows[k])), None)
