@@ -2096,6 +2096,43 @@ def test_a_stick_slip_whose_period_wanders_has_no_line_at_its_harmonics():
     assert f == pytest.approx(10.47, abs=0.02)
 
 
+def test_a_stepped_drives_own_stick_slip_at_each_level_is_no_line():
+    """A stick-slip under a drive that steps between two levels (an
+    independent NumPy sawtooth: 1.0 s cycles at the slow level, 0.3 s at the
+    fast one, each slip a 0.05 s half-cosine, no line in it) puts each
+    level's harmonics where the record's mean period has none: the strongest
+    "line" off the mean period's harmonics is one of them (`school_lab`'s
+    effect-free records were named `triggering` so, 2 of 8).  Each level's
+    own period is read from the cycles loaded at it (:func:`.evidence.level_combs`)
+    and its harmonics are passed over too: the line found is off every
+    level's harmonics, and a real line between them is still found."""
+    from lieng.diagnose.evidence import level_combs
+    from lieng.diagnose.segment import find_cycles, prepare
+    from lieng.diagnose.signals import spectral_line
+
+    rng = np.random.default_rng(5)
+    dt, slip = 0.005, 0.05
+    per = np.r_[np.full(30, 1.0), np.full(100, 0.3)] * (1.0 + 0.002 * rng.standard_normal(130))
+    edges = np.r_[0.0, np.cumsum(per)]
+    t = np.arange(0.0, edges[-1], dt)
+    k = np.searchsorted(edges, t, side="right") - 1
+    tau, rise = t - edges[k], per[k] - slip
+    x = np.where(tau < rise, tau / rise, 0.5 + 0.5 * np.cos(np.pi * (tau - rise) / slip)) \
+        + 0.002 * rng.standard_normal(t.size)
+    pr = prepare(record_from_arrays(t, x, 1.0 / rise))
+    c = find_cycles(pr, 10.0)
+    combs = level_combs(pr, c)
+    assert sorted(round(f, 2) for f, _, _ in combs) == [1.0, pytest.approx(3.33, abs=0.02)]
+    f0 = 1.0 / float(np.mean(c.periods(pr.t)))
+    off = lambda f, fc: abs(f / fc - round(f / fc))
+    f = spectral_line(x, dt, 5.0, f0, by="snr")[0]
+    assert min(off(f, 1.0), off(f, 1.0 / 0.3)) < 0.05                       # a harmonic of one level
+    f = spectral_line(x, dt, 5.0, f0, by="snr", combs=combs)[0]
+    assert min(off(f, 1.0), off(f, 1.0 / 0.3)) > 0.05
+    f = spectral_line(x + 0.05 * np.sin(2 * np.pi * 11.47 * t), dt, 5.0, f0, by="snr", combs=combs)[0]
+    assert f == pytest.approx(11.47, abs=0.02)
+
+
 def test_a_weak_line_among_a_stick_slips_harmonics_is_refined_where_it_is():
     """The line's frequency refined on the record's own times keeps the weak
     line the spectrum found: a sawtooth (an independent NumPy stick-slip at

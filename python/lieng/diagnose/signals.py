@@ -90,11 +90,15 @@ def _jackknife(values_fn, n_units, groups=10):
     return float(math.sqrt((g - 1) / g * np.sum((est - est.mean()) ** 2)))
 
 
-def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float = 0.0, exclude=()):
+def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float = 0.0, exclude=(), combs=()):
     """The strongest line above fmin and, with f0, off the harmonics of f0
     (by more than two bins, and by more than ``jitter`` times the harmonic's
     frequency, at most a fifth of f0: a stick-slip whose period wanders by a
-    relative ``jitter`` spreads its h-th harmonic over h times that), and
+    relative ``jitter`` spreads its h-th harmonic over h times that), and,
+    with f0, off the harmonics of each further (frequency, jitter, least
+    width in Hz) of ``combs`` alike (a drive that steps between levels: each
+    level's own stick-slip, whose lines are as wide as the inverse of the
+    time spent at that level), and
     off the frequencies ``exclude`` (by more than three bins: the record's
     mains hum, removed from it, and lines already passed over):
     (frequency, amplitude, local signal-to-noise of the line), from a
@@ -112,8 +116,9 @@ def spectral_line(sig, dt, fmin, f0=None, by: str = "amplitude", jitter: float =
     for fx in exclude:
         ok &= np.abs(f - fx) > 3.0 / (n * dt)
     if f0 is not None and f0 > 0:
-        h = np.round(f / f0)
-        ok &= np.abs(f / f0 - h) * f0 > np.maximum(2.0 / (n * dt), np.minimum(jitter * h * f0, 0.2 * f0))
+        for fc, jc, wc in ((f0, jitter, 0.0), *combs):
+            h = np.round(f / fc)
+            ok &= np.abs(f / fc - h) * fc > np.maximum(max(2.0 / (n * dt), wc), np.minimum(jc * h * fc, 0.2 * fc))
     if not np.any(ok):
         return 0.0, 0.0, 0.0
     if by == "snr":
