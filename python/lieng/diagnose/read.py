@@ -278,12 +278,15 @@ _AXIS = re.compile(r"^\s*f(?:orce)?[\s_]*\(?([xy])\)?(?:_[a-zµ]+)?\s*$", re.IGN
 
 def _sliding_axis(roles, tab, cols, units) -> str | None:
     """A multi-axis force sensor's friction (an ATI six-axis cell's ``Fx``
-    and ``Fy`` beside ``Fz``): the tangential channel that swings the more
+    and ``Fy`` beside ``Fz``, the normal load): the tangential channel that swings the more
     (2nd to 98th percentile), ``Fx`` unless ``Fy`` swings more, said.  A rig
     that slides along y puts its friction in ``Fy``, and ``Fx`` holds
     crosstalk and noise (a blind generator's records were read on ``Fx``, a
     drop a hundred times too small)."""
-    if "F" not in cols:
+    # (only beside a normal channel on z, Fz: the other two axes are then both tangential; a rig whose y is its
+    # normal axis writes Fy for the load)
+    if "F" not in cols or "N" not in cols or not re.match(r"^\s*f(?:orce)?[\s_]*\(?z\)?(?:_[a-zµ]+)?\s*$",
+                                                         cols["N"][0], re.IGNORECASE):
         return None
     m = _AXIS.match(cols["F"][0])
     if m is None:
