@@ -161,7 +161,9 @@ def build_parser() -> argparse.ArgumentParser:
                                     "last 70 and, on a record of up to 250 000 samples, its middle with "
                                     "models fitted on the rest).")
     dg.add_argument("data", nargs="?", help="a table t,x[,y][,v0] (s, mm, mm, mm/s) or t,F[,N][,position|v0] with units in "
-                    "the header (F may be a friction coefficient mu or COF: times N when recorded; 'F [mN]', "
+                    "the header (F may be a friction coefficient mu or COF: times N when recorded; N an apply pressure, "
+                    "'Apply pressure [kPa]'; a six-axis sensor's Fx, Fy, Fz: the friction on the tangential axis "
+                    "that swings more; 'F [mN]', "
                     "'time/s', 'Time (s)', or a row of units; comma, semicolon, TAB or whitespace, a decimal comma, "
                     "'#' comments; rows with a missing value left out), a LabVIEW .lvm file, a spreadsheet .xlsx (its first "
                     "sheet, read as such a table), a MATLAB .mat (v4-v7) or NumPy .npz file of vectors named so, or a TRC deck")
