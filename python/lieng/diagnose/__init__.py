@@ -429,6 +429,18 @@ def diagnose(rec: Record, fn: float | None = None, *, fn_uncertainty: float = FN
         c0 = find_cycles(pr, fn, retry=True)
         notes.append(f"no stick-slip in {span[2]}: the record is analysed from {pr.t[0]:.4g} to {pr.t[-1]:.4g} s, "
                      f"where it stick-slips")
+    if len(pr.strokes) == 1 and c0.n >= 3 and float(np.median(pr.x[c0.peak_i])) <= 0:
+        # a friction that reads below zero through its stick-slip while the drive runs one way: a sensor's offset
+        # not tared (`haptic_phantom`'s six-axis cell, -0.37 N under a friction of +0.2 N), as no friction that
+        # pushes the slider on is the 1-DoF model's: its baseline was read flat below zero, and its replicates'
+        # peaks scattered 25 times the record's.  The level is read from the lowest trough, one drop above zero
+        # (a constant added to the friction is another single-valued characteristic: the stick-slip is the same)
+        shift = c0.amplitude(pr.x) - float(np.percentile(pr.x[c0.trough_i], 2))
+        pr.x = pr.x + shift
+        rec.x = rec.x + shift * pr.strokes[0].sign
+        notes.append(f"the friction reads below zero while the drive runs one way (its peaks at "
+                     f"{float(np.median(pr.x[c0.peak_i])) - shift:.4g} mm): a sensor's offset not tared? Read "
+                     f"{shift:.4g} mm higher, its lowest trough one drop above zero")
     fd, fse, nsl = estimate_fn(pr, c0, fn) if c0.n >= 3 else (None, None, 0)
     if fd is not None and not (fd * pr.dt < 0.2):
         fd = None
